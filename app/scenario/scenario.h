@@ -1,0 +1,96 @@
+#pragma once
+// The scenario a session runs: which meshes, materials, fixed regions, trocars, instruments and
+// inputs. Plain data, SI units (key names in the file carry their unit: *_m, *_Pa, *_deg ...).
+// Loaded and checked by LoadScenario (scenario_loader.h); the file format is docs/scenario.md.
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace vesica::app {
+
+/// Linear isotropic material. E > 0 (Pa), -1 < nu < 0.5, density > 0 (kg/m^3).
+struct Material {
+  double youngs_modulus_Pa = 0;
+  double poisson_ratio = 0;
+  double density_kg_per_m3 = 1000;
+};
+
+/// The liver: a boundary-element body on a closed surface whose labelled vertices are fixed.
+struct LiverConfig {
+  std::filesystem::path surface_mesh;  ///< absolute (resolved against the scenario file)
+  Material material;
+};
+
+enum class FemElement { kLinear, kCorotational };
+enum class FemSolver { kPcg, kCholmod };
+
+/// The gallbladder: a finite-element body on a tetrahedral mesh.
+struct GallbladderConfig {
+  std::filesystem::path volume_mesh;
+  Material material;
+  FemElement element = FemElement::kCorotational;
+  FemSolver solver = FemSolver::kPcg;
+  double rayleigh_mass = 0.1;       ///< alpha in D = alpha M + beta K (1/s)
+  double rayleigh_stiffness = 0.01; ///< beta (s)
+};
+
+/// Springs and membranes binding the gallbladder to its bed (gallbladder paper §2.4).
+struct ConnectiveTissueConfig {
+  double stiffness_N_per_m = 0;
+  double damping_Ns_per_m = 0;
+  double attach_offset_m = 0;  ///< how far the gallbladder is offset toward the liver to find springs
+};
+
+struct AbdominalWallConfig {
+  std::filesystem::path surface_mesh;
+  double opacity = 0.15;  ///< 0 hides the wall, 1 is opaque
+};
+
+/// A port through the abdominal wall; each instrument pivots about its trocar's remote centre.
+struct Trocar {
+  std::string name;
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+};
+
+struct LaparoscopeConfig {
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d look_at_m = Eigen::Vector3d::Zero();
+  double view_angle_deg = 70;  ///< vertical field of view
+  double scope_angle_deg = 30; ///< angled-scope tip (0 or 30 degrees in practice)
+};
+
+enum class InstrumentKind { kGrasper, kCauteryHook };
+/// What drives an instrument: keyboard/mouse, a recorded session, or a CAN arm (emulated or real).
+enum class InputKind { kKeyboard, kReplay, kEmulatedArm, kCanArm };
+
+struct InstrumentConfig {
+  std::string name;
+  InstrumentKind kind = InstrumentKind::kGrasper;
+  std::string trocar;  ///< name of a Trocar
+  InputKind input = InputKind::kKeyboard;
+  std::filesystem::path replay_file;  ///< when input is replay
+  std::string can_interface;          ///< when input is can_arm, e.g. "can0"
+  int can_node_id = 0;
+  double shaft_length_m = 0.36;
+  double shaft_radius_m = 0.0025;
+  double initial_insertion_m = 0.10;  ///< tip depth below the remote centre at start
+};
+
+struct Scenario {
+  std::filesystem::path source;  ///< the file it was loaded from
+  std::string name;
+  std::string description;
+  LiverConfig liver;
+  GallbladderConfig gallbladder;
+  ConnectiveTissueConfig connective_tissue;
+  AbdominalWallConfig abdominal_wall;
+  std::vector<Trocar> trocars;
+  LaparoscopeConfig laparoscope;
+  std::vector<InstrumentConfig> instruments;
+
+  const Trocar& trocar(const std::string& name) const;
+};
+
+}  // namespace vesica::app

@@ -1,0 +1,337 @@
+#include "app/scenario/scenario_loader.h"
+
+#include <toml++/toml.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <utility>
+
+namespace vesica::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Reads one TOML table, remembering which keys were used so that unknown keys (typos) are errors.
+/// Every message carries file, line and the dotted key.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string file, std::string prefix)
+      : table_(table), file_(std::move(file)), prefix_(std::move(prefix)) {}
+
+  [[noreturn]] void Fail(const toml::node* at, std::string_view key, const std::string& what) const {
+    std::ostringstream os;
+    const auto& where = at ? at->source() : table_.source();
+    os << file_ << ':' << where.begin.line << ": " << Dotted(key) << ": " << what;
+    throw ScenarioError(os.str());
+  }
+
+  const toml::node* Node(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key);
+  }
+
+  double Number(std::string_view key, std::optional<double> fallback = std::nullopt) {
+    const toml::node* n = Node(key);
+    if (!n) {
+      if (fallback) return *fallback;
+      Fail(nullptr, key, "missing (a number is required)");
+    }
+    if (auto v = n->value<double>(); v && n->is_number()) return *v;
+    Fail(n, key, std::string("must be a number, got ") + TypeName(*n));
+  }
+
+  /// A number in the open interval (lo, hi); infinities allowed as open ends.
+  double NumberIn(std::string_view key, double lo, double hi, std::optional<double> fallback = std::nullopt) {
+    const double v = Number(key, fallback);
+    if (!(v > lo && v < hi)) {
+      std::ostringstream os;
+      os << "must be in (" << lo << ", " << hi << "), got " << v;
+      Fail(table_.get(key), key, os.str());
+    }
+    return v;
+  }
+
+  double Positive(std::string_view key, std::optional<double> fallback = std::nullopt) {
+    const double v = Number(key, fallback);
+    if (!(v > 0)) {
+      std::ostringstream os;
+      os << "must be > 0, got " << v;
+      Fail(table_.get(key), key, os.str());
+    }
+    return v;
+  }
+
+  double NonNegative(std::string_view key, std::optional<double> fallback = std::nullopt) {
+    const double v = Number(key, fallback);
+    if (!(v >= 0)) {
+      std::ostringstream os;
+      os << "must be >= 0, got " << v;
+      Fail(table_.get(key), key, os.str());
+    }
+    return v;
+  }
+
+  std::string String(std::string_view key, std::optional<std::string> fallback = std::nullopt) {
+    const toml::node* n = Node(key);
+    if (!n) {
+      if (fallback) return *fallback;
+      Fail(nullptr, key, "missing (a string is required)");
+    }
+    if (auto v = n->value<std::string>(); v && n->is_string()) return *v;
+    Fail(n, key, std::string("must be a string, got ") + TypeName(*n));
+  }
+
+  int Integer(std::string_view key, std::optional<int> fallback = std::nullopt) {
+    const toml::node* n = Node(key);
+    if (!n) {
+      if (fallback) return *fallback;
+      Fail(nullptr, key, "missing (an integer is required)");
+    }
+    if (n->is_integer()) return static_cast<int>(*n->value<std::int64_t>());
+    Fail(n, key, std::string("must be an integer, got ") + TypeName(*n));
+  }
+
+  Eigen::Vector3d Vector3(std::string_view key, std::optional<Eigen::Vector3d> fallback = std::nullopt) {
+    const toml::node* n = Node(key);
+    if (!n) {
+      if (fallback) return *fallback;
+      Fail(nullptr, key, "missing (an array of 3 numbers is required)");
+    }
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 3)
+      Fail(n, key, "must be an array of 3 numbers [x, y, z], got " +
+                       (a ? "an array of " + std::to_string(a->size()) : std::string(TypeName(*n))));
+    Eigen::Vector3d v;
+    for (int i = 0; i < 3; ++i) {
+      const toml::node& e = (*a)[static_cast<std::size_t>(i)];
+      if (!e.is_number()) Fail(n, key, "element " + std::to_string(i) + " must be a number");
+      v[i] = *e.value<double>();
+    }
+    return v;
+  }
+
+  /// One of the named choices; the message lists them.
+  template <typename Enum>
+  Enum Choice(std::string_view key, const std::vector<std::pair<std::string, Enum>>& choices,
+              std::optional<Enum> fallback = std::nullopt) {
+    if (!table_.get(key) && fallback) {
+      used_.insert(std::string(key));
+      return *fallback;
+    }
+    const std::string s = String(key);
+    std::string names;
+    for (const auto& [name, value] : choices) {
+      if (name == s) return value;
+      names += (names.empty() ? "" : ", ") + name;
+    }
+    Fail(table_.get(key), key, "unknown value '" + s + "' (expected one of: " + names + ")");
+  }
+
+  TableReader Table(std::string_view key) {
+    const toml::node* n = Node(key);
+    if (!n) Fail(nullptr, key, "missing table [" + Dotted(key) + "]");
+    const toml::table* t = n->as_table();
+    if (!t) Fail(n, key, std::string("must be a table, got ") + TypeName(*n));
+    return TableReader(*t, file_, Dotted(key));
+  }
+
+  bool Has(std::string_view key) const { return table_.contains(key); }
+
+  /// [[key]] arrays of tables.
+  std::vector<TableReader> Tables(std::string_view key) {
+    const toml::node* n = Node(key);
+    if (!n) Fail(nullptr, key, "missing (at least one [[" + Dotted(key) + "]] is required)");
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables()) Fail(n, key, "must be an array of tables [[" + Dotted(key) + "]]");
+    std::vector<TableReader> out;
+    for (std::size_t i = 0; i < a->size(); ++i)
+      out.emplace_back(*(*a)[i].as_table(), file_, Dotted(key) + "[" + std::to_string(i) + "]");
+    return out;
+  }
+
+  /// Call after reading: any key not read is a typo or an unsupported setting.
+  void RejectUnknownKeys() const {
+    for (const auto& [k, node] : table_)
+      if (!used_.count(std::string(k.str()))) Fail(&node, k.str(), "unknown key");
+  }
+
+  const std::string& file() const { return file_; }
+  const toml::table& table() const { return table_; }
+
+ private:
+  std::string Dotted(std::string_view key) const {
+    return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
+  }
+  static const char* TypeName(const toml::node& n) {
+    switch (n.type()) {
+      case toml::node_type::string: return "a string";
+      case toml::node_type::integer: return "an integer";
+      case toml::node_type::floating_point: return "a number";
+      case toml::node_type::boolean: return "a boolean";
+      case toml::node_type::array: return "an array";
+      case toml::node_type::table: return "a table";
+      default: return "a date/time";
+    }
+  }
+
+  const toml::table& table_;
+  std::string file_;
+  std::string prefix_;
+  std::set<std::string> used_;
+};
+
+fs::path ExistingFile(TableReader& t, std::string_view key, const fs::path& base_dir) {
+  const std::string raw = t.String(key);
+  fs::path p = fs::path(raw).is_absolute() ? fs::path(raw) : base_dir / raw;
+  p = p.lexically_normal();
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec)) t.Fail(t.table().get(key), key, "file not found: " + p.string());
+  return p;
+}
+
+Material ReadMaterial(TableReader& t) {
+  Material m;
+  m.youngs_modulus_Pa = t.Positive("youngs_modulus_Pa");
+  m.poisson_ratio = t.NumberIn("poisson_ratio", -1.0, 0.5);
+  m.density_kg_per_m3 = t.Positive("density_kg_per_m3", 1000.0);
+  return m;
+}
+
+}  // namespace
+
+const Trocar& Scenario::trocar(const std::string& trocar_name) const {
+  for (const auto& t : trocars)
+    if (t.name == trocar_name) return t;
+  throw ScenarioError(source.string() + ": no trocar named '" + trocar_name + "'");
+}
+
+Scenario ParseScenario(std::string_view text, const fs::path& source_name, const fs::path& base_dir) {
+  const std::string file = source_name.string();
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << file << ':' << e.source().begin.line << ": syntax error: " << e.description();
+    throw ScenarioError(os.str());
+  }
+  TableReader top(root, file, "");
+  Scenario s;
+  s.source = source_name;
+
+  {
+    auto t = top.Table("scenario");
+    s.name = t.String("name");
+    s.description = t.String("description", std::string());
+    t.RejectUnknownKeys();
+  }
+  {
+    auto t = top.Table("liver");
+    t.Choice<int>("model", {{"bem", 0}});
+    s.liver.surface_mesh = ExistingFile(t, "surface_mesh", base_dir);
+    s.liver.material = ReadMaterial(t);
+    t.RejectUnknownKeys();
+  }
+  {
+    auto t = top.Table("gallbladder");
+    t.Choice<int>("model", {{"fem", 0}});
+    s.gallbladder.volume_mesh = ExistingFile(t, "volume_mesh", base_dir);
+    s.gallbladder.material = ReadMaterial(t);
+    s.gallbladder.element = t.Choice<FemElement>(
+        "element", {{"linear", FemElement::kLinear}, {"corotational", FemElement::kCorotational}},
+        FemElement::kCorotational);
+    s.gallbladder.solver =
+        t.Choice<FemSolver>("solver", {{"pcg", FemSolver::kPcg}, {"cholmod", FemSolver::kCholmod}}, FemSolver::kPcg);
+    s.gallbladder.rayleigh_mass = t.NonNegative("rayleigh_mass_per_s", 0.1);
+    s.gallbladder.rayleigh_stiffness = t.NonNegative("rayleigh_stiffness_s", 0.01);
+    t.RejectUnknownKeys();
+  }
+  {
+    auto t = top.Table("connective_tissue");
+    s.connective_tissue.stiffness_N_per_m = t.Positive("stiffness_N_per_m");
+    s.connective_tissue.damping_Ns_per_m = t.NonNegative("damping_Ns_per_m", 0.0);
+    s.connective_tissue.attach_offset_m = t.Positive("attach_offset_m", 0.005);
+    t.RejectUnknownKeys();
+  }
+  {
+    auto t = top.Table("abdominal_wall");
+    s.abdominal_wall.surface_mesh = ExistingFile(t, "surface_mesh", base_dir);
+    const double opacity = t.Number("opacity", 0.15);
+    if (!(opacity >= 0 && opacity <= 1))
+      t.Fail(t.table().get("opacity"), "opacity", "must be in [0, 1], got " + std::to_string(opacity));
+    s.abdominal_wall.opacity = opacity;
+    t.RejectUnknownKeys();
+  }
+  for (auto& t : top.Tables("trocars")) {
+    Trocar trocar;
+    trocar.name = t.String("name");
+    trocar.position_m = t.Vector3("position_m");
+    for (const auto& other : s.trocars)
+      if (other.name == trocar.name) t.Fail(t.table().get("name"), "name", "duplicate trocar '" + trocar.name + "'");
+    t.RejectUnknownKeys();
+    s.trocars.push_back(trocar);
+  }
+  {
+    auto t = top.Table("laparoscope");
+    s.laparoscope.position_m = t.Vector3("position_m");
+    s.laparoscope.look_at_m = t.Vector3("look_at_m");
+    if ((s.laparoscope.look_at_m - s.laparoscope.position_m).norm() < 1e-3)
+      t.Fail(t.table().get("look_at_m"), "look_at_m", "must be at least 1 mm from position_m");
+    s.laparoscope.view_angle_deg = t.NumberIn("view_angle_deg", 1.0, 179.0, 70.0);
+    s.laparoscope.scope_angle_deg = t.NumberIn("scope_angle_deg", -1.0, 90.0, 30.0);
+    t.RejectUnknownKeys();
+  }
+  for (auto& t : top.Tables("instruments")) {
+    InstrumentConfig in;
+    in.name = t.String("name");
+    in.kind = t.Choice<InstrumentKind>(
+        "kind", {{"grasper", InstrumentKind::kGrasper}, {"cautery_hook", InstrumentKind::kCauteryHook}});
+    in.trocar = t.String("trocar");
+    bool found = false;
+    for (const auto& tr : s.trocars) found = found || tr.name == in.trocar;
+    if (!found) t.Fail(t.table().get("trocar"), "trocar", "no trocar named '" + in.trocar + "'");
+    in.input = t.Choice<InputKind>("input", {{"keyboard", InputKind::kKeyboard},
+                                             {"replay", InputKind::kReplay},
+                                             {"emulated_arm", InputKind::kEmulatedArm},
+                                             {"can_arm", InputKind::kCanArm}},
+                                   InputKind::kKeyboard);
+    if (in.input == InputKind::kReplay) in.replay_file = ExistingFile(t, "replay_file", base_dir);
+    if (in.input == InputKind::kCanArm || in.input == InputKind::kEmulatedArm) {
+      in.can_interface = t.String("can_interface", std::string(in.input == InputKind::kCanArm ? "can0" : "virtual"));
+      in.can_node_id = t.Integer("can_node_id");
+      if (in.can_node_id < 1 || in.can_node_id > 127)
+        t.Fail(t.table().get("can_node_id"), "can_node_id", "must be in [1, 127], got " + std::to_string(in.can_node_id));
+    }
+    in.shaft_length_m = t.Positive("shaft_length_m", 0.36);
+    in.shaft_radius_m = t.Positive("shaft_radius_m", 0.0025);
+    in.initial_insertion_m = t.NonNegative("initial_insertion_m", 0.10);
+    if (in.initial_insertion_m > in.shaft_length_m)
+      t.Fail(t.table().get("initial_insertion_m"), "initial_insertion_m", "exceeds shaft_length_m");
+    for (const auto& other : s.instruments)
+      if (other.name == in.name) t.Fail(t.table().get("name"), "name", "duplicate instrument '" + in.name + "'");
+    t.RejectUnknownKeys();
+    s.instruments.push_back(in);
+  }
+  top.RejectUnknownKeys();
+  return s;
+}
+
+Scenario LoadScenario(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ScenarioError(path.string() + ": cannot open scenario file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseScenario(text.str(), path, path.parent_path());
+}
+
+fs::path DefaultScenarioPath() {
+  if (const char* dir = std::getenv("VESICA_DATA_DIR")) return fs::path(dir) / "scenarios" / "cholecystectomy.toml";
+  return fs::path(VESICA_DATA_DIR) / "scenarios" / "cholecystectomy.toml";
+}
+
+}  // namespace vesica::app

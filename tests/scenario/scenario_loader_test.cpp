@@ -1,0 +1,207 @@
+#include "app/scenario/scenario_loader.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+namespace vesica::app {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// A complete, valid scenario; the malformed cases below each change one thing in it.
+constexpr const char* kValid = R"([scenario]
+name = "test"
+
+[liver]
+model = "bem"
+surface_mesh = "liver.vtk"
+youngs_modulus_Pa = 170000.0
+poisson_ratio = 0.4
+
+[gallbladder]
+model = "fem"
+volume_mesh = "gb.vtu"
+youngs_modulus_Pa = 2300.0
+poisson_ratio = 0.45
+element = "linear"
+solver = "cholmod"
+
+[connective_tissue]
+stiffness_N_per_m = 20.0
+
+[abdominal_wall]
+surface_mesh = "wall.vtk"
+
+[[trocars]]
+name = "left"
+position_m = [-0.1, 0.1, 0.0]
+
+[[trocars]]
+name = "right"
+position_m = [0.1, 0.1, 0.0]
+
+[laparoscope]
+position_m = [0.0, 0.15, -0.1]
+look_at_m = [0.0, 0.0, 0.0]
+
+[[instruments]]
+name = "grasper"
+kind = "grasper"
+trocar = "left"
+
+[[instruments]]
+name = "hook"
+kind = "cautery_hook"
+trocar = "right"
+input = "emulated_arm"
+can_node_id = 2
+)";
+
+class ScenarioLoaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("vesica_scenario_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    for (const char* name : {"liver.vtk", "gb.vtu", "wall.vtk"}) std::ofstream(dir_ / name) << "placeholder";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  Scenario Parse(const std::string& text) { return ParseScenario(text, "case.toml", dir_); }
+
+  // Replaces `from` (which must occur once) and returns the error message of parsing the result.
+  std::string ErrorAfter(const std::string& from, const std::string& to) {
+    std::string text = kValid;
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    EXPECT_EQ(text.find(from, at + 1), std::string::npos) << from << " occurs twice";
+    text.replace(at, from.size(), to);
+    try {
+      Parse(text);
+    } catch (const ScenarioError& e) {
+      return e.what();
+    }
+    return "no error";
+  }
+
+  // 1-based line of the first occurrence of `needle` in the valid text after the same replacement.
+  static int LineOf(const std::string& needle) {
+    const std::string text = kValid;
+    const auto at = text.find(needle);
+    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(ScenarioLoaderTest, ValidFileGivesAllValuesInSiUnits) {
+  const Scenario s = Parse(kValid);
+  EXPECT_EQ(s.name, "test");
+  EXPECT_EQ(s.liver.surface_mesh, (dir_ / "liver.vtk").lexically_normal());
+  EXPECT_DOUBLE_EQ(s.liver.material.youngs_modulus_Pa, 170000.0);
+  EXPECT_DOUBLE_EQ(s.gallbladder.material.poisson_ratio, 0.45);
+  EXPECT_EQ(s.gallbladder.element, FemElement::kLinear);
+  EXPECT_EQ(s.gallbladder.solver, FemSolver::kCholmod);
+  EXPECT_DOUBLE_EQ(s.connective_tissue.attach_offset_m, 0.005);  // default
+  ASSERT_EQ(s.trocars.size(), 2u);
+  EXPECT_TRUE(s.trocar("right").position_m.isApprox(Eigen::Vector3d(0.1, 0.1, 0.0)));
+  ASSERT_EQ(s.instruments.size(), 2u);
+  EXPECT_EQ(s.instruments[0].input, InputKind::kKeyboard);  // default
+  EXPECT_EQ(s.instruments[1].kind, InstrumentKind::kCauteryHook);
+  EXPECT_EQ(s.instruments[1].input, InputKind::kEmulatedArm);
+  EXPECT_EQ(s.instruments[1].can_node_id, 2);
+  EXPECT_THROW(s.trocar("middle"), ScenarioError);
+}
+
+TEST_F(ScenarioLoaderTest, SyntaxErrorNamesTheLine) {
+  EXPECT_THAT(ErrorAfter("stiffness_N_per_m = 20.0", "stiffness_N_per_m = = 20.0"),
+              HasSubstr("case.toml:" + std::to_string(LineOf("stiffness_N_per_m")) + ": syntax error"));
+}
+
+TEST_F(ScenarioLoaderTest, PoissonRatioAtIncompressibleLimitIsRejected) {
+  EXPECT_EQ(ErrorAfter("poisson_ratio = 0.45", "poisson_ratio = 0.5"),
+            "case.toml:" + std::to_string(LineOf("poisson_ratio = 0.45")) +
+                ": gallbladder.poisson_ratio: must be in (-1, 0.5), got 0.5");
+}
+
+TEST_F(ScenarioLoaderTest, NonPositiveYoungsModulusIsRejected) {
+  EXPECT_THAT(ErrorAfter("youngs_modulus_Pa = 170000.0", "youngs_modulus_Pa = -5.0"),
+              HasSubstr("case.toml:" + std::to_string(LineOf("youngs_modulus_Pa = 170000.0")) +
+                        ": liver.youngs_modulus_Pa: must be > 0, got -5"));
+}
+
+TEST_F(ScenarioLoaderTest, WrongTypeIsNamed) {
+  EXPECT_THAT(ErrorAfter("stiffness_N_per_m = 20.0", "stiffness_N_per_m = \"stiff\""),
+              HasSubstr("case.toml:" + std::to_string(LineOf("stiffness_N_per_m")) +
+                        ": connective_tissue.stiffness_N_per_m: must be a number, got a string"));
+}
+
+TEST_F(ScenarioLoaderTest, MissingKeyNamesItsTable) {
+  // The line is the table header's, where the key should have been.
+  EXPECT_THAT(ErrorAfter("youngs_modulus_Pa = 2300.0\n", ""),
+              HasSubstr("case.toml:" + std::to_string(LineOf("[gallbladder]")) +
+                        ": gallbladder.youngs_modulus_Pa: missing"));
+}
+
+TEST_F(ScenarioLoaderTest, UnknownKeyIsATypo) {
+  EXPECT_THAT(ErrorAfter("poisson_ratio = 0.4\n", "poisson_ratio = 0.4\npoison_ratio = 0.3\n"),
+              HasSubstr("case.toml:" + std::to_string(LineOf("poisson_ratio = 0.4") + 1) +
+                        ": liver.poison_ratio: unknown key"));
+}
+
+TEST_F(ScenarioLoaderTest, MissingMeshFileIsNamed) {
+  EXPECT_THAT(ErrorAfter("\"gb.vtu\"", "\"nowhere.vtu\""),
+              HasSubstr("case.toml:" + std::to_string(LineOf("gb.vtu")) +
+                        ": gallbladder.volume_mesh: file not found: "));
+}
+
+TEST_F(ScenarioLoaderTest, PositionWithTwoComponentsIsRejected) {
+  EXPECT_THAT(ErrorAfter("[0.1, 0.1, 0.0]", "[0.1, 0.1]"),
+              HasSubstr("case.toml:" + std::to_string(LineOf("[0.1, 0.1, 0.0]")) +
+                        ": trocars[1].position_m: must be an array of 3 numbers [x, y, z], got an array of 2"));
+}
+
+TEST_F(ScenarioLoaderTest, InstrumentOnUnknownTrocarIsRejected) {
+  EXPECT_THAT(ErrorAfter("trocar = \"right\"", "trocar = \"middle\""),
+              HasSubstr("case.toml:" + std::to_string(LineOf("trocar = \"right\"")) +
+                        ": instruments[1].trocar: no trocar named 'middle'"));
+}
+
+TEST_F(ScenarioLoaderTest, UnknownChoiceListsTheValidOnes) {
+  EXPECT_THAT(ErrorAfter("input = \"emulated_arm\"", "input = \"joystick\""),
+              HasSubstr("case.toml:" + std::to_string(LineOf("input = ")) +
+                        ": instruments[1].input: unknown value 'joystick' (expected one of: keyboard, replay, "
+                        "emulated_arm, can_arm)"));
+}
+
+TEST_F(ScenarioLoaderTest, CanNodeIdOutOfRange) {
+  EXPECT_THAT(ErrorAfter("can_node_id = 2", "can_node_id = 200"),
+              HasSubstr("case.toml:" + std::to_string(LineOf("can_node_id")) +
+                        ": instruments[1].can_node_id: must be in [1, 127], got 200"));
+}
+
+TEST_F(ScenarioLoaderTest, DuplicateInstrumentName) {
+  EXPECT_THAT(ErrorAfter("name = \"hook\"", "name = \"grasper\""),
+              HasSubstr("case.toml:" + std::to_string(LineOf("name = \"hook\"")) +
+                        ": instruments[1].name: duplicate instrument 'grasper'"));
+}
+
+TEST_F(ScenarioLoaderTest, MissingTableIsNamed) {
+  EXPECT_THAT(ErrorAfter("[connective_tissue]\nstiffness_N_per_m = 20.0\n", ""),
+              HasSubstr(": connective_tissue: missing table [connective_tissue]"));
+}
+
+TEST_F(ScenarioLoaderTest, UnreadableFileIsNamed) {
+  try {
+    LoadScenario(dir_ / "absent.toml");
+    FAIL() << "no error";
+  } catch (const ScenarioError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("absent.toml: cannot open scenario file"));
+  }
+}
+
+}  // namespace
+}  // namespace vesica::app
