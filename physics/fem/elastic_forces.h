@@ -1,0 +1,22 @@
+#pragma once
+// Internal elastic forces, tangent stiffness and strain energy of a FEM body at a displacement,
+// linear or corotational (f_e = R K_e (R^T x_e - X_e), tangent R K_e R^T: the usual
+// corotational linearisation that drops dR/dx).
+
+#include <Eigen/Core>
+
+#include "physics/fem/fem_model.h"
+
+namespace vesica::physics {
+
+/// u: 3n displacement (m). Writes the tangent values in pattern order (nnz, N/m; for a linear
+/// body a copy of the constant K, skipped when tangent_values is null) and the internal force
+/// (3n, N). Returns the elastic energy (J).
+double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u,
+                            Eigen::VectorXd* tangent_values, Eigen::VectorXd* internal_force_N);
+
+/// y = A x for a symmetric matrix stored in the pattern (read row-wise, gather form).
+void SymmetricPatternMultiply(const SparsePattern& pattern, const Eigen::VectorXd& values,
+                              const Eigen::VectorXd& x, Eigen::VectorXd& y);
+
+}  // namespace vesica::physics

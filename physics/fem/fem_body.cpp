@@ -1,0 +1,275 @@
+#include "physics/fem/fem_body.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "physics/fem/cholmod_solver.h"
+#include "physics/fem/elastic_forces.h"
+#include "physics/fem/fem_error.h"
+#include "physics/fem/pcg_solver.h"
+#include "physics/fem/time_integrator.h"
+
+namespace vesica::physics {
+
+struct FemBody::Workspace {
+  Eigen::VectorXd tangent_values;  // K_t at the state the system was assembled at
+  Eigen::VectorXd system_values;   // S with Dirichlet rows/columns replaced by identity
+  Eigen::VectorXd internal_force;
+  double elastic_energy = 0.0;
+  bool system_assembled = false;   // S exists (for the last step, or the current state)
+  bool acceleration_valid = false;
+  Eigen::VectorXd last_increment;  // PCG warm start
+  BlockJacobiPreconditioner jacobi;
+  CholmodSolver cholmod;
+  bool factor_matches_system = false;
+  int steps_since_factor = 0;
+};
+
+FemBody::FemBody(std::shared_ptr<const FemModel> model) : model_(std::move(model)), work_(std::make_unique<Workspace>()) {
+  if (!model_) throw FemError("FemBody: null model");
+  const int n = model_->num_dofs();
+  state_.displacement_m.setZero(n);
+  state_.velocity_m_per_s.setZero(n);
+  state_.acceleration_m_per_s2.setZero(n);
+  state_.external_force_N.setZero(n);
+  work_->last_increment.setZero(n);
+}
+FemBody::~FemBody() = default;
+FemBody::FemBody(FemBody&&) noexcept = default;
+FemBody& FemBody::operator=(FemBody&&) noexcept = default;
+
+namespace {
+void CheckVector(const FemModel& m, const Eigen::VectorXd& x, const char* what) {
+  const std::string& name = m.settings.body_name;
+  if (x.size() != m.num_dofs()) {
+    std::ostringstream os;
+    os << name << ": " << what << " has " << x.size() << " entries, expected 3 x " << m.num_nodes();
+    throw FemError(os.str());
+  }
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    if (!std::isfinite(x[i])) {
+      std::ostringstream os;
+      os << name << ": " << what << " of node " << i / 3 << " (axis " << i % 3 << ") is not finite";
+      throw FemError(os.str());
+    }
+}
+}  // namespace
+
+void FemBody::SetExternalForces(const Eigen::VectorXd& f) {
+  CheckVector(*model_, f, "external force");
+  state_.external_force_N = f;
+  work_->acceleration_valid = false;
+}
+
+void FemBody::SetState(const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+  CheckVector(*model_, u, "displacement");
+  CheckVector(*model_, v, "velocity");
+  state_.displacement_m = u;
+  state_.velocity_m_per_s = v;
+  work_->acceleration_valid = false;
+  work_->system_assembled = false;
+}
+
+void FemBody::DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  const FemSettings& s = model_->settings;
+  y.setZero(x.size());
+  if (s.rayleigh_mass_per_s != 0.0) y += s.rayleigh_mass_per_s * model_->MassTimes(x);
+  if (s.rayleigh_stiffness_s != 0.0) {
+    Eigen::VectorXd kx;
+    SymmetricPatternMultiply(model_->pattern, work_->tangent_values, x, kx);
+    y += s.rayleigh_stiffness_s * kx;
+  }
+}
+
+void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
+  const FemModel& m = *model_;
+  const FemSettings& s = m.settings;
+  Workspace& w = *work_;
+  const bool linear = s.element_model == ElementModel::kLinear;
+  // A linear body's K never changes: copy it once, then only f = K u is needed.
+  w.elastic_energy = ComputeElasticForces(m, u, (linear && w.system_assembled) ? nullptr : &w.tangent_values,
+                                          &w.internal_force);
+  if (linear && w.system_assembled) return;
+  const SystemCoefficients c = IntegratorCoefficients(s);
+  const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;
+  const double stiffness_scale = 1.0 + c.damping * s.rayleigh_stiffness_s;
+  w.system_values = stiffness_scale * w.tangent_values;
+  if (m.uses_consistent_mass()) {
+    w.system_values += mass_scale * m.consistent_mass_values;
+  } else {
+    for (int i = 0; i < m.num_dofs(); ++i) w.system_values[m.pattern.diagonal_slot[i]] += mass_scale * m.lumped_mass_kg[i];
+  }
+  for (int k : m.constrained_slots) w.system_values[k] = 0.0;
+  for (int i : m.fixed_dofs) w.system_values[m.pattern.diagonal_slot[i]] = 1.0;
+  w.system_assembled = true;
+  w.factor_matches_system = false;
+}
+
+bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, double tolerance, int max_iterations,
+                          StepReport* report) {
+  const FemModel& m = *model_;
+  const FemSettings& s = m.settings;
+  Workspace& w = *work_;
+  PcgResult r;
+  if (s.solver == LinearSolverKind::kCholmod) {
+    const bool linear = s.element_model == ElementModel::kLinear;
+    const bool refresh = !w.cholmod.factorized() ||
+                         (!linear && !w.factor_matches_system && w.steps_since_factor + 1 >= s.cholmod_refresh_steps);
+    if (refresh) {
+      if (!w.cholmod.Factorize(m.pattern, w.system_values)) return false;
+      w.factor_matches_system = true;
+      w.steps_since_factor = 0;
+    } else if (!linear && !w.factor_matches_system) {
+      ++w.steps_since_factor;
+    }
+    if (linear || w.factor_matches_system) {
+      w.cholmod.Solve(rhs, du);
+      if (report) report->solver_iterations = 0, report->relative_residual = 0.0;
+      return du.allFinite();
+    }
+    // Stale factor of a corotational body: it preconditions PCG on the current system.
+    du = w.last_increment;
+    r = SolvePcg(m.pattern, w.system_values, rhs, du,
+                 [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { w.cholmod.Solve(res, z); }, tolerance,
+                 max_iterations);
+  } else {
+    w.jacobi.Compute(m.pattern, w.system_values);
+    du = w.last_increment;
+    r = SolvePcg(m.pattern, w.system_values, rhs, du,
+                 [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { w.jacobi.Apply(res, z); }, tolerance,
+                 max_iterations);
+  }
+  if (report) report->solver_iterations = r.iterations, report->relative_residual = r.relative_residual;
+  return du.allFinite();
+}
+
+StepReport FemBody::Step() {
+  const FemModel& m = *model_;
+  const FemSettings& s = m.settings;
+  Workspace& w = *work_;
+  StepReport report;
+  const Eigen::VectorXd& u = state_.displacement_m;
+  const Eigen::VectorXd& v = state_.velocity_m_per_s;
+  const Eigen::VectorXd& f_ext = state_.external_force_N;
+
+  AssembleSystem(u);
+  Eigen::VectorXd damping_v;
+  if (s.integrator == TimeIntegrator::kNewmark && !w.acceleration_valid) {
+    // Start from equilibrium M a = f_ext - f_int - D v, so Newmark's energy balance holds from step 1.
+    DampingTimes(v, damping_v);
+    const Eigen::VectorXd net = (f_ext - w.internal_force - damping_v).cwiseProduct(m.free_dofs);
+    if (m.uses_consistent_mass()) {
+      Eigen::VectorXd mass = m.consistent_mass_values;
+      for (int k : m.constrained_slots) mass[k] = 0.0;
+      for (int i : m.fixed_dofs) mass[m.pattern.diagonal_slot[i]] = 1.0;
+      BlockJacobiPreconditioner pre;
+      pre.Compute(m.pattern, mass);
+      Eigen::VectorXd a = Eigen::VectorXd::Zero(net.size());
+      SolvePcg(m.pattern, mass, net, a, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { pre.Apply(r, z); },
+               1e-14, 200);
+      state_.acceleration_m_per_s2 = a;
+    } else {
+      state_.acceleration_m_per_s2 = net.cwiseQuotient(m.lumped_mass_kg);
+    }
+    w.acceleration_valid = true;
+  }
+  const Eigen::VectorXd& a = state_.acceleration_m_per_s2;
+
+  Eigen::VectorXd mass_drive, damping_drive, damping_term;
+  IntegratorDrives(s, v, a, mass_drive, damping_drive);
+  DampingTimes(damping_drive, damping_term);
+  Eigen::VectorXd rhs = f_ext - w.internal_force + m.MassTimes(mass_drive) + damping_term;
+  for (int i : m.fixed_dofs) rhs[i] = 0.0;
+
+  const double energy_before = KineticEnergy() + w.elastic_energy;
+  report.energy_J = energy_before;
+  auto reject = [&](const std::string& why) {
+    report.accepted = false;
+    report.rejection_reason = s.body_name + ": step " + std::to_string(state_.steps) + " rolled back: " + why;
+    w.last_increment.setZero();
+    return report;
+  };
+
+  Eigen::VectorXd du;
+  if (!SolveSystem(rhs, du, s.pcg_relative_tolerance, s.pcg_max_iterations, &report))
+    return reject(rhs.allFinite() ? "the linear solve failed (system not positive definite or non-finite)"
+                                  : "non-finite right-hand side");
+  Eigen::VectorXd v_next, a_next;
+  IntegratorUpdate(s, du, v, a, v_next, a_next);
+  if (!v_next.allFinite() || !a_next.allFinite()) return reject("non-finite velocity or acceleration");
+
+  // Energy after the step, elastic part to second order about u (one product with K_t).
+  Eigen::VectorXd k_du;
+  SymmetricPatternMultiply(m.pattern, w.tangent_values, du, k_du);
+  const double elastic_after = w.elastic_energy + w.internal_force.dot(du) + 0.5 * du.dot(k_du);
+  const double energy_after = 0.5 * v_next.dot(m.MassTimes(v_next)) + elastic_after;
+  const double work = std::abs(f_ext.dot(du));
+  if (!std::isfinite(energy_after) || energy_after > s.max_energy_growth * (energy_before + work) + s.energy_floor_J) {
+    std::ostringstream os;
+    os << "energy jumped from " << energy_before << " J to " << energy_after << " J (external work " << work << " J)";
+    return reject(os.str());
+  }
+
+  state_.displacement_m += du;
+  state_.velocity_m_per_s = std::move(v_next);
+  state_.acceleration_m_per_s2 = std::move(a_next);
+  state_.time_s += s.time_step_s;
+  ++state_.steps;
+  w.last_increment = du;
+  report.accepted = true;
+  report.energy_J = energy_after;
+  return report;
+}
+
+Vertices FemBody::CurrentPositions() const {
+  Vertices x = model_->rest_mesh.vertices;
+  AsStackedVector(x) += state_.displacement_m;
+  return x;
+}
+
+double FemBody::KineticEnergy() const {
+  const Eigen::VectorXd& v = state_.velocity_m_per_s;
+  return 0.5 * v.dot(model_->MassTimes(v));
+}
+
+double FemBody::ElasticEnergy() const {
+  Eigen::VectorXd f;
+  return ComputeElasticForces(*model_, state_.displacement_m, nullptr, &f);
+}
+
+PointCompliance FemBody::Compliance(const std::vector<TetLocation>& points) {
+  const FemModel& m = *model_;
+  const int n = m.num_dofs();
+  const int cols = 3 * static_cast<int>(points.size());
+  Eigen::MatrixXd jt = Eigen::MatrixXd::Zero(n, cols);  // J^T
+  for (size_t p = 0; p < points.size(); ++p) {
+    const TetLocation& loc = points[p];
+    if (loc.tet < 0 || loc.tet >= m.rest_mesh.num_tets() || !loc.weights.allFinite()) {
+      std::ostringstream os;
+      os << m.settings.body_name << ": constrained point " << p << " is bound to tet " << loc.tet
+         << " (mesh has " << m.rest_mesh.num_tets() << " tets) or has non-finite weights";
+      throw FemError(os.str());
+    }
+    for (int k = 0; k < 4; ++k)
+      for (int axis = 0; axis < 3; ++axis) {
+        const int dof = 3 * m.rest_mesh.tets(loc.tet, k) + axis;
+        jt(dof, 3 * p + axis) += loc.weights[k] * m.free_dofs[dof];  // fixed dofs do not move
+      }
+  }
+  if (!work_->system_assembled) AssembleSystem(state_.displacement_m);
+  PointCompliance c;
+  c.response.resize(n, cols);
+  for (int j = 0; j < cols; ++j) {
+    Eigen::VectorXd x;
+    work_->last_increment.setZero();
+    // Accurate solves: the contact solver needs C itself, not a 20-iteration estimate.
+    if (!SolveSystem(jt.col(j), x, 1e-12, 10 * n, nullptr))
+      throw FemError(m.settings.body_name + ": compliance solve failed (system not positive definite)");
+    c.response.col(j) = x;
+  }
+  work_->last_increment.setZero();
+  c.delassus = jt.transpose() * c.response;
+  return c;
+}
+
+}  // namespace vesica::physics

@@ -1,0 +1,72 @@
+#pragma once
+// A deformable tetrahedral body advanced by implicit steps: owns its per-step state and solver
+// workspace, shares the const FemModel. Used by the scene (gallbladder), needle and registration.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "physics/fem/fem_model.h"
+#include "physics/fem/fem_state.h"
+#include "physics/mesh/barycentric.h"
+
+namespace vesica::physics {
+
+struct StepReport {
+  bool accepted = false;           ///< false: the state was rolled back (left as before the step)
+  int solver_iterations = 0;       ///< PCG iterations (0 for a direct CHOLMOD solve)
+  double relative_residual = 0.0;  ///< PCG |b - S du| / |b|; 0 for a direct solve
+  double energy_J = 0.0;           ///< kinetic + elastic after the step (before it when rejected)
+  std::string rejection_reason;    ///< names the body and what went wrong
+};
+
+/// Compliance of constrained points: C = S^-1 with S the step's system matrix
+/// (M/h^2 + D/h + K for backward Euler), J the 3m x 3n barycentric map of the points.
+struct PointCompliance {
+  Eigen::MatrixXd response;  ///< C J^T, 3n x 3m: displacement increment per unit point force, m/N
+  Eigen::MatrixXd delassus;  ///< W = J C J^T, 3m x 3m, m/N
+};
+
+class FemBody {
+ public:
+  explicit FemBody(std::shared_ptr<const FemModel> model);
+  ~FemBody();
+  FemBody(FemBody&&) noexcept;
+  FemBody& operator=(FemBody&&) noexcept;
+
+  const FemModel& model() const { return *model_; }
+  const FemState& state() const { return state_; }
+
+  /// Nodal forces (3n, N) applied during the following steps. Throws FemError on size or NaN.
+  void SetExternalForces(const Eigen::VectorXd& force_N);
+  /// Replaces u and v (3n each; a is recomputed at the next Newmark step). Throws FemError.
+  void SetState(const Eigen::VectorXd& displacement_m, const Eigen::VectorXd& velocity_m_per_s);
+
+  /// One implicit step of settings.time_step_s. Never lets a non-finite value into the state.
+  StepReport Step();
+
+  /// Current vertex positions X + u, #V x 3.
+  Vertices CurrentPositions() const;
+  double KineticEnergy() const;
+  /// Elastic energy at the current displacement (one pass over the elements).
+  double ElasticEnergy() const;
+
+  /// Compliance for points bound to tets (weights from barycentric.h). Uses the system matrix of
+  /// the last step (assembled at the current state if none yet): exact for linear bodies.
+  PointCompliance Compliance(const std::vector<TetLocation>& points);
+
+ private:
+  struct Workspace;
+  void AssembleSystem(const Eigen::VectorXd& u);
+  bool SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, double tolerance, int max_iterations,
+                   StepReport* report);
+  void DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+
+  std::shared_ptr<const FemModel> model_;
+  FemState state_;
+  std::unique_ptr<Workspace> work_;
+};
+
+}  // namespace vesica::physics

@@ -1,0 +1,88 @@
+#include "physics/fem/fem_model.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "physics/fem/fem_error.h"
+#include "physics/mesh/mesh_validation.h"
+
+namespace vesica::physics {
+
+Eigen::Map<const Eigen::SparseMatrix<double>> PatternMatrix(const SparsePattern& p,
+                                                            const Eigen::VectorXd& values) {
+  const auto& s = p.structure;
+  return {s.rows(), s.cols(), s.nonZeros(), s.outerIndexPtr(), s.innerIndexPtr(), values.data()};
+}
+
+Eigen::VectorXd FemModel::MassTimes(const Eigen::VectorXd& x) const {
+  if (uses_consistent_mass()) return PatternMatrix(pattern, consistent_mass_values) * x;
+  return lumped_mass_kg.cwiseProduct(x);
+}
+
+Eigen::VectorXd FemModel::GravityForces(const Eigen::Vector3d& g) const {
+  return MassTimes(g.replicate(num_nodes(), 1));
+}
+
+FemModel BuildFemModel(const TetrahedralMesh& mesh, const FemSettings& settings,
+                       const std::vector<DirichletNode>& fixed_nodes) {
+  ValidateSettings(settings);
+  const std::string& name = settings.body_name;
+  if (mesh.num_tets() == 0) throw FemError(name + ": mesh has no tetrahedra");
+  // Names the body and the tet: "<body>: tetrahedron 17: inverted ...".
+  ValidateTetrahedralMesh(mesh, name);
+
+  FemModel m;
+  m.settings = settings;
+  m.rest_mesh = mesh;
+  m.lame_lambda_Pa = LameLambda(settings.material);
+  m.lame_mu_Pa = LameMu(settings.material);
+  m.pattern = BuildSparsePattern(mesh);
+  const int n = mesh.num_vertices();
+  const Eigen::Index nnz = m.pattern.structure.nonZeros();
+  const bool consistent = settings.mass_model == MassModel::kConsistent;
+  m.lumped_mass_kg = Eigen::VectorXd::Zero(3 * n);
+  m.linear_stiffness_values = Eigen::VectorXd::Zero(nnz);
+  if (consistent) m.consistent_mass_values = Eigen::VectorXd::Zero(nnz);
+
+  m.elements.reserve(mesh.num_tets());
+  const double rho = settings.material.density_kg_per_m3;
+  for (int t = 0; t < mesh.num_tets(); ++t) {
+    auto x = [&](int a) { return Eigen::Vector3d(mesh.vertices.row(mesh.tets(t, a))); };
+    m.elements.push_back(MakeTetElement(x(0), x(1), x(2), x(3)));
+    const TetElement& e = m.elements.back();
+    const double mass = rho * e.rest_volume_m3;
+    for (int a = 0; a < 4; ++a) {
+      m.lumped_mass_kg.segment<3>(3 * mesh.tets(t, a)).array() += mass / 4.0;
+      for (int b = 0; b < 4; ++b) {
+        const int nb = mesh.tets(t, b);
+        const Eigen::Matrix3d k = StiffnessBlock(e, m.lame_lambda_Pa, m.lame_mu_Pa, a, b);
+        for (int c = 0; c < 3; ++c)
+          for (int r = 0; r < 3; ++r) m.linear_stiffness_values[m.pattern.Slot(t, a, b, nb, r, c)] += k(r, c);
+        // Consistent linear-tet mass: rho V / 20 (1 + delta_ab) per axis.
+        if (consistent)
+          for (int r = 0; r < 3; ++r)
+            m.consistent_mass_values[m.pattern.Slot(t, a, b, nb, r, r)] += mass / 20.0 * (a == b ? 2.0 : 1.0);
+      }
+    }
+  }
+
+  m.free_dofs = Eigen::VectorXd::Ones(3 * n);
+  for (const DirichletNode& f : fixed_nodes) {
+    if (f.node < 0 || f.node >= n) {
+      std::ostringstream os;
+      os << name << ": fixed node " << f.node << " is out of range (mesh has " << n << " nodes)";
+      throw FemError(os.str());
+    }
+    for (int axis = 0; axis < 3; ++axis)
+      if (f.axes[axis]) m.free_dofs[3 * f.node + axis] = 0.0;
+  }
+  for (int i = 0; i < 3 * n; ++i)
+    if (m.free_dofs[i] == 0.0) m.fixed_dofs.push_back(i);
+  const auto& s = m.pattern.structure;
+  for (int col = 0; col < 3 * n; ++col)
+    for (int k = s.outerIndexPtr()[col]; k < s.outerIndexPtr()[col + 1]; ++k)
+      if (m.free_dofs[col] == 0.0 || m.free_dofs[s.innerIndexPtr()[k]] == 0.0) m.constrained_slots.push_back(k);
+  return m;
+}
+
+}  // namespace vesica::physics

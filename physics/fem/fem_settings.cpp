@@ -1,0 +1,34 @@
+#include "physics/fem/fem_settings.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "physics/fem/fem_error.h"
+
+namespace vesica::physics {
+
+void ValidateSettings(const FemSettings& s) {
+  ValidateMaterial(s.material, s.body_name);
+  auto check = [&](bool ok, const char* field, double value, const char* range) {
+    if (ok) return;
+    std::ostringstream os;
+    os << s.body_name << ": setting " << field << " = " << value << " is out of range (" << range << ")";
+    throw FemError(os.str());
+  };
+  check(std::isfinite(s.time_step_s) && s.time_step_s > 0.0, "time_step_s", s.time_step_s, "h > 0");
+  check(std::isfinite(s.rayleigh_mass_per_s) && s.rayleigh_mass_per_s >= 0.0, "rayleigh_mass_per_s",
+        s.rayleigh_mass_per_s, ">= 0");
+  check(std::isfinite(s.rayleigh_stiffness_s) && s.rayleigh_stiffness_s >= 0.0, "rayleigh_stiffness_s",
+        s.rayleigh_stiffness_s, ">= 0");
+  check(s.newmark_beta > 0.0 && s.newmark_beta <= 0.5, "newmark_beta", s.newmark_beta, "0 < beta <= 0.5");
+  check(s.newmark_gamma >= 0.5 && s.newmark_gamma <= 1.0, "newmark_gamma", s.newmark_gamma,
+        "0.5 <= gamma <= 1");
+  check(s.pcg_relative_tolerance > 0.0 && s.pcg_relative_tolerance < 1.0, "pcg_relative_tolerance",
+        s.pcg_relative_tolerance, "0 < tol < 1");
+  check(s.pcg_max_iterations >= 1, "pcg_max_iterations", s.pcg_max_iterations, ">= 1");
+  check(s.cholmod_refresh_steps >= 1, "cholmod_refresh_steps", s.cholmod_refresh_steps, ">= 1");
+  check(s.max_energy_growth >= 1.0, "max_energy_growth", s.max_energy_growth, ">= 1");
+  check(s.energy_floor_J >= 0.0, "energy_floor_J", s.energy_floor_J, ">= 0");
+}
+
+}  // namespace vesica::physics

@@ -1,0 +1,56 @@
+#pragma once
+// Scenario settings of one FEM body: element model, mass, damping, integrator and linear solver.
+
+#include <string>
+
+#include "physics/fem/elastic_material.h"
+
+namespace vesica::physics {
+
+enum class ElementModel {
+  kLinear,        ///< small-strain Hooke; K constant
+  kCorotational,  ///< per-element rotation removed before Hooke (registration paper 3.2)
+};
+
+enum class MassModel { kLumped, kConsistent };
+
+enum class TimeIntegrator {
+  kNewmark,        ///< Newmark-beta (gallbladder paper eqs. 6-7); beta 1/4, gamma 1/2 conserve energy
+  kBackwardEuler,  ///< implicit Euler: unconditionally stable, damps as 1/sqrt(1 + (omega h)^2)
+};
+
+enum class LinearSolverKind {
+  kPcg,      ///< conjugate gradient, block-Jacobi preconditioned (the paper's PCG)
+  kCholmod,  ///< sparse Cholesky (SuiteSparse CHOLMOD); see cholmod_refresh_steps
+};
+
+struct FemSettings {
+  std::string body_name = "fem body";  ///< used in every error message
+  ElasticMaterial material;
+  ElementModel element_model = ElementModel::kCorotational;
+  MassModel mass_model = MassModel::kLumped;
+  TimeIntegrator integrator = TimeIntegrator::kBackwardEuler;
+  LinearSolverKind solver = LinearSolverKind::kCholmod;
+
+  double time_step_s = 1e-2;             ///< h, s; > 0
+  double rayleigh_mass_per_s = 0.0;      ///< alpha in D = alpha M + beta K, 1/s; >= 0
+  double rayleigh_stiffness_s = 0.0;     ///< beta in D = alpha M + beta K, s; >= 0
+  double newmark_beta = 0.25;            ///< 0 < beta <= 0.5
+  double newmark_gamma = 0.5;            ///< 0.5 <= gamma <= 1
+
+  double pcg_relative_tolerance = 1e-8;  ///< stop when |r| <= tol |b| (paper: 1e-8)
+  int pcg_max_iterations = 20;           ///< paper: 20
+  /// Corotational + CHOLMOD: refactorise the system every this many steps (1 = every step, exact);
+  /// in between, the last factor preconditions PCG. Linear bodies factorise once.
+  int cholmod_refresh_steps = 1;
+
+  /// Divergence guard: a step is rejected when its energy exceeds this factor times (energy
+  /// before + |work of external forces|) plus energy_floor_J.
+  double max_energy_growth = 10.0;
+  double energy_floor_J = 1e-12;
+};
+
+/// Throws FemError naming the body and the field for out-of-range settings (material included).
+void ValidateSettings(const FemSettings& settings);
+
+}  // namespace vesica::physics

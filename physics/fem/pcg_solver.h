@@ -1,0 +1,38 @@
+#pragma once
+// Preconditioned conjugate gradient on a symmetric pattern matrix (gallbladder paper §2.2: tolerance
+// 1e-8, at most 20 iterations, warm started from the previous solution).
+
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "physics/fem/sparse_pattern.h"
+
+namespace vesica::physics {
+
+struct PcgResult {
+  int iterations = 0;
+  double relative_residual = 0.0;  ///< |b - A x| / |b| at exit (0 when b = 0)
+  bool converged = false;
+};
+
+/// z = P^-1 r.
+using Preconditioner = std::function<void(const Eigen::VectorXd& r, Eigen::VectorXd& z)>;
+
+/// Inverse 3x3 diagonal blocks of a pattern matrix, applied as a preconditioner.
+class BlockJacobiPreconditioner {
+ public:
+  void Compute(const SparsePattern& pattern, const Eigen::VectorXd& values);
+  void Apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+
+ private:
+  std::vector<Eigen::Matrix3d> inverse_blocks_;
+};
+
+/// Solves A x = b; x holds the warm start on entry and the solution on exit.
+PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values,
+                   const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& preconditioner,
+                   double relative_tolerance, int max_iterations);
+
+}  // namespace vesica::physics
