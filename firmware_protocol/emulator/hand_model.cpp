@@ -1,0 +1,36 @@
+#include "firmware_protocol/emulator/hand_model.h"
+
+namespace vesica::fp::emulator {
+
+bool HandScript::Add(double t_s, const HandTarget& target) {
+  if (!keys_.empty() && t_s < keys_.back().t_s) return false;
+  keys_.push_back({t_s, target});
+  return true;
+}
+
+HandTarget HandScript::At(double t_s) const {
+  if (keys_.empty()) return HandTarget{};
+  if (t_s <= keys_.front().t_s) return keys_.front().target;
+  if (t_s >= keys_.back().t_s) return keys_.back().target;
+  std::size_t i = 1;
+  while (keys_[i].t_s < t_s) ++i;
+  const Keyframe& a = keys_[i - 1];
+  const Keyframe& b = keys_[i];
+  const double s = b.t_s > a.t_s ? (t_s - a.t_s) / (b.t_s - a.t_s) : 1.0;
+  HandTarget out = a.target;  // discrete fields hold until the next keyframe
+  for (int k = 0; k < 3; ++k) out.p_T[k] = a.target.p_T[k] + s * (b.target.p_T[k] - a.target.p_T[k]);
+  out.roll_rad = a.target.roll_rad + s * (b.target.roll_rad - a.target.roll_rad);
+  out.jaw_rad = a.target.jaw_rad + s * (b.target.jaw_rad - a.target.jaw_rad);
+  return out;
+}
+
+Vec3 HandForceOnInstrument(const HandParameters& hand, const HandTarget& target, const Vec3& p_T,
+                           const Vec3& v_T) {
+  if (!target.holding) return {0.0, 0.0, 0.0};
+  Vec3 f{};
+  for (int k = 0; k < 3; ++k)
+    f[k] = hand.stiffness_N_per_m * (target.p_T[k] - p_T[k]) - hand.damping_N_s_per_m * v_T[k];
+  return f;
+}
+
+}  // namespace vesica::fp::emulator
