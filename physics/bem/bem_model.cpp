@@ -1,0 +1,62 @@
+#include "physics/bem/bem_model.h"
+
+#include <utility>
+#include <vector>
+
+#include "physics/mesh/mesh_validation.h"
+
+namespace vesica::physics {
+
+std::uint64_t BemCacheKey(const TriangleMesh& surface, const ElasticMaterial& material,
+                          const BemQuadratureOptions& quadrature) {
+  std::uint64_t h = HashBytes("vesica-bem-greens-v1", 20, 0);
+  h = HashBytes(surface.vertices.data(), sizeof(double) * surface.vertices.size(), h);
+  h = HashBytes(surface.triangles.data(), sizeof(int) * surface.triangles.size(), h);
+  std::vector<unsigned char> fixed(static_cast<std::size_t>(surface.num_vertices()), 0);
+  for (Eigen::Index i = 0; i < surface.vertex_labels.size() && i < surface.num_vertices(); ++i)
+    fixed[static_cast<std::size_t>(i)] = (surface.vertex_labels(i) & kLabelFixed) ? 1 : 0;
+  h = HashBytes(fixed.data(), fixed.size(), h);
+  const double numbers[] = {material.youngs_modulus_Pa, material.poisson_ratio,
+                            quadrature.near_ratio, quadrature.far_ratio};
+  h = HashBytes(numbers, sizeof(numbers), h);
+  const int integers[] = {quadrature.duffy_order, quadrature.max_subdivision};
+  return HashBytes(integers, sizeof(integers), h);
+}
+
+BemModel PrecomputeBemModel(const TriangleMesh& surface, const ElasticMaterial& material,
+                            const std::string& source, const BemPrecomputeOptions& options,
+                            GreensCacheStatus* cache_status) {
+  ValidateTriangleMesh(surface, source, SurfaceRequirement::kClosed);
+  ValidateElasticMaterial(material);
+  BemModel model;
+  model.rest_surface = surface;
+  model.material = material;
+  model.layout = MakeBemNodeLayout(surface, source);
+  model.lumped_area_m2 = Eigen::VectorXd::Zero(surface.num_vertices());
+  for (int f = 0; f < surface.num_triangles(); ++f)
+    for (int c = 0; c < 3; ++c)
+      model.lumped_area_m2(surface.triangles(f, c)) += TriangleArea(surface, f) / 3.0;
+
+  const Eigen::Index rows = 3 * surface.num_vertices();
+  const Eigen::Index cols = 3 * static_cast<Eigen::Index>(model.layout.free_nodes.size());
+  const std::uint64_t key = BemCacheKey(surface, material, options.quadrature);
+  GreensCacheStatus status = GreensCacheStatus::kMissing;
+  if (!options.cache_path.empty()) {
+    if (auto cached = ReadGreensCache(options.cache_path, key, status)) {
+      if (cached->rows() == rows && cached->cols() == cols) {
+        model.greens = std::move(*cached);
+      } else {
+        status = GreensCacheStatus::kCorrupt;
+      }
+    }
+  }
+  if (cache_status) *cache_status = status;
+  if (model.greens.size() > 0) return model;
+
+  model.greens =
+      ComputeGreensFunctions(AssembleBemMatrices(surface, material, options.quadrature), model.layout);
+  if (!options.cache_path.empty()) WriteGreensCache(options.cache_path, key, model.greens);
+  return model;
+}
+
+}  // namespace vesica::physics

@@ -1,0 +1,16 @@
+#pragma once
+// Large dense LU solves through LAPACK (OpenBLAS: blocked and multithreaded), kept out of the
+// headers so that only one translation unit sees the Fortran interface.
+
+#include <Eigen/Core>
+#include <string>
+
+namespace vesica::physics {
+
+/// Overwrites B with A^{-1} B (A is destroyed: it holds the LU factors afterwards). Throws
+/// SingularSystemError naming `what` when the reciprocal 1-norm condition number of A is below
+/// `min_rcond`. Returns that reciprocal condition number.
+double SolveDenseInPlace(Eigen::MatrixXd& A, Eigen::MatrixXd& B, const std::string& what,
+                         double min_rcond = 1e-13);
+
+}  // namespace vesica::physics
