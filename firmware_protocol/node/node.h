@@ -1,0 +1,526 @@
+// Reference firmware node of one Vesica arm: NMT state machine, explicit enable, command watchdog,
+// current/torque/velocity/joint-range limits with the active limiter reported, E-stop, latched
+// faults with EMCY and history, typed parameters with CRC-protected storage, calibration.
+// Use (firmware main loop or the arm emulator):
+//   Node<Board> node(board, serial);  node.boot(now_us);
+//   for each received frame: node.on_frame(frame, now_us);
+//   every control period:   node.tick(now_us);  while (node.pop_tx(f)) bus.send(f);
+// Times are microseconds of a monotonic clock the caller owns (injected in tests).
+// Freestanding C++17: no heap, no exceptions, no OS calls; Hw must satisfy NodeHardware.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "firmware_protocol/codec/codec.h"
+#include "firmware_protocol/node/fault_history.h"
+#include "firmware_protocol/node/node_hardware.h"
+#include "firmware_protocol/node/parameter_store.h"
+
+namespace vesica::fp {
+
+template <VESICA_NODE_HARDWARE Hw>
+class Node {
+ public:
+  static constexpr std::size_t kTxQueueDepth = 32;
+  static constexpr std::uint32_t kCalibrationProgressPeriod_us = 100'000;
+  static constexpr std::uint32_t kCurrentOffsetSamples = 200;
+  static constexpr std::uint64_t kFindIndexTimeout_us = 10'000'000;
+
+  Node(Hw& hw, std::uint32_t serial) : hw_(hw), serial_(serial) {}
+
+  // Power-on / NMT reset node: load parameters (CRC-checked), send the boot-up heartbeat and
+  // Identity, enter PreOperational. A corrupt parameter image latches FaultCode::ParameterCrc.
+  void boot(std::uint64_t now_us);
+  void on_frame(const CanFrame& frame, std::uint64_t now_us);
+  void tick(std::uint64_t now_us);
+  bool pop_tx(CanFrame& out);
+
+  NodeState state() const { return faults_.latched() != FaultCode::None ? NodeState::Fault : nmt_state_; }
+  bool enabled() const { return enabled_; }
+  FaultCode latched_fault() const { return faults_.latched(); }
+  Limiter active_limiter() const { return limiter_; }
+  const JointArray& applied_current() const { return applied_; }
+  const DecodeErrorCounters& decode_errors() const { return decode_errors_; }
+  const ParameterStore& parameters() const { return params_; }
+  const FaultHistory& fault_history() const { return faults_; }
+  std::uint8_t node_id() const { return node_id_; }
+  std::uint8_t negotiated_minor() const { return negotiated_minor_; }
+  std::uint32_t tx_overflows() const { return tx_overflows_; }
+  CalibrationStatus calibration_status() const { return cal_status_; }
+
+ private:
+  void queue(const Message& m);
+  void raise(FaultCode code, std::uint8_t joint, std::int16_t detail);
+  void send_joint_state();
+  void send_heartbeat();
+  void send_identity();
+  void handle_nmt(const Nmt& m, std::uint64_t now_us);
+  void handle_control(const Control& m, std::uint64_t now_us);
+  void handle_parameter(const ParameterRequest& m);
+  void handle_hello(const Hello& m);
+  void handle_calibration(const CalibrationCommand& m, std::uint64_t now_us);
+  void check_faults(const HardwareSample& s, std::uint64_t now_us);
+  JointArray limited_output(const HardwareSample& s);
+  JointArray calibration_output(const HardwareSample& s, std::uint64_t now_us);
+  void finish_calibration(CalibrationStatus status, std::int32_t result);
+  void sync_fault_parameters();
+  static float clampf(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
+
+  Hw& hw_;
+  std::uint32_t serial_;
+  ParameterStore params_;
+  FaultHistory faults_;
+  DecodeErrorCounters decode_errors_;
+  SequenceTracker command_sequence_;
+  NodeState nmt_state_ = NodeState::Boot;
+  std::uint8_t node_id_ = 1;
+  std::uint8_t negotiated_minor_ = 0xFF;
+  bool enabled_ = false;
+  std::uint64_t last_command_us_ = 0;
+  CommandMode command_mode_ = CommandMode::MotorCurrent;
+  JointArray command_{};
+  JointArray applied_{};
+  JointArray position_{};
+  Limiter limiter_ = Limiter::Disabled;
+  std::uint8_t joint_state_counter_ = 0;
+  std::uint8_t aux_counter_ = 0;
+  std::uint8_t current_state_counter_ = 0;
+  std::uint64_t next_heartbeat_us_ = 0;
+  std::uint64_t next_aux_us_ = 0;
+  HardwareSample last_sample_{};
+  // Calibration in progress.
+  CalibrationProcedure cal_procedure_ = CalibrationProcedure::Abort;
+  CalibrationStatus cal_status_ = CalibrationStatus::Idle;
+  std::uint8_t cal_mask_ = 0;
+  std::uint8_t cal_joint_ = 0;
+  float cal_max_current_ = 0;
+  std::uint32_t cal_samples_ = 0;
+  JointArray cal_sum_{};
+  std::uint64_t cal_started_us_ = 0;
+  std::uint64_t next_cal_progress_us_ = 0;
+  // Transmit ring.
+  CanFrame tx_[kTxQueueDepth];
+  std::size_t tx_head_ = 0;
+  std::size_t tx_size_ = 0;
+  std::uint32_t tx_overflows_ = 0;
+};
+
+// ---- implementation (header-only because Node is a template) ----
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::boot(std::uint64_t now_us) {
+  nmt_state_ = NodeState::Boot;
+  enabled_ = false;
+  applied_ = JointArray{};
+  command_ = JointArray{};
+  hw_.apply_currents(applied_);
+  negotiated_minor_ = 0xFF;
+  command_sequence_.reset();
+  cal_status_ = CalibrationStatus::Idle;
+  faults_.clear_latch();
+
+  std::uint8_t image[ParameterStore::kImageSize];
+  StorageResult loaded = StorageResult::BadMagic;
+  if (hw_.storage_read(image, sizeof image)) loaded = params_.deserialize(image, sizeof image);
+  if (loaded != StorageResult::Ok) params_.restore_defaults();
+  std::uint32_t history[param::kFaultHistoryDepth];
+  for (int k = 0; k < param::kFaultHistoryDepth; ++k) history[k] = params_.u32(param::kFaultHistory + k);
+  faults_.restore(params_.u32(param::kFaultHistoryCount), history);
+  params_.set_internal(param::kSerial, serial_);
+  node_id_ = static_cast<std::uint8_t>(params_.u32(param::kNodeId));
+
+  send_heartbeat();  // boot-up message: heartbeat with state Boot (CANopen 0x00)
+  nmt_state_ = NodeState::PreOperational;
+  send_identity();
+  // Blank storage (BadMagic) is a new board: defaults, no fault. Anything else is corruption.
+  if (loaded != StorageResult::Ok && loaded != StorageResult::BadMagic)
+    raise(FaultCode::ParameterCrc, 0xFF, static_cast<std::int16_t>(loaded));
+  next_heartbeat_us_ = now_us + 1000ull * params_.u32(param::kHeartbeatPeriod_ms);
+  next_aux_us_ = now_us;
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::on_frame(const CanFrame& frame, std::uint64_t now_us) {
+  Message m;
+  const DecodeError e = decode(frame, m);
+  if (e != DecodeError::None) {
+    decode_errors_.add(e);
+    params_.set_internal(param::kDecodeErrorCount, decode_errors_.total());
+    return;
+  }
+  const MessageKind kind = kind_of(m);
+  if (spec_of(kind).per_node && node_of(m) != node_id_) return;  // another node's traffic
+  if (nmt_state_ == NodeState::Boot) return;
+  switch (kind) {
+    case MessageKind::Nmt: handle_nmt(std::get<Nmt>(m), now_us); break;
+    case MessageKind::EStop: raise(FaultCode::EmergencyStop, 0xFF, std::get<EStop>(m).source_node); break;
+    case MessageKind::Sync:
+      if (nmt_state_ != NodeState::Stopped) send_joint_state();
+      break;
+    case MessageKind::CurrentCommand: {
+      if (nmt_state_ == NodeState::Stopped) break;
+      const CurrentCommand& c = std::get<CurrentCommand>(m);
+      const DecodeError seq = command_sequence_.check(c.counter);
+      if (seq != DecodeError::None) {
+        decode_errors_.add(seq);
+        params_.set_internal(param::kDecodeErrorCount, decode_errors_.total());
+        break;
+      }
+      params_.set_internal(param::kLostCommandCount, command_sequence_.lost_frames());
+      command_mode_ = c.mode;
+      command_ = c.value;
+      last_command_us_ = now_us;
+      send_joint_state();
+      break;
+    }
+    case MessageKind::Control: handle_control(std::get<Control>(m), now_us); break;
+    case MessageKind::Hello: handle_hello(std::get<Hello>(m)); break;
+    case MessageKind::ParameterRequest:
+      if (nmt_state_ != NodeState::Stopped) handle_parameter(std::get<ParameterRequest>(m));
+      break;
+    case MessageKind::CalibrationCommand:
+      if (nmt_state_ != NodeState::Stopped) handle_calibration(std::get<CalibrationCommand>(m), now_us);
+      break;
+    default: break;  // node-to-host messages from other nodes
+  }
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::handle_nmt(const Nmt& m, std::uint64_t now_us) {
+  if (m.target_node != 0 && m.target_node != node_id_) return;
+  switch (m.command) {
+    case NmtCommand::Start: nmt_state_ = NodeState::Operational; break;
+    case NmtCommand::Stop: nmt_state_ = NodeState::Stopped; enabled_ = false; break;
+    case NmtCommand::EnterPreOperational: nmt_state_ = NodeState::PreOperational; enabled_ = false; break;
+    case NmtCommand::ResetNode: {
+      const FaultCode latched = faults_.latched();
+      boot(now_us);
+      if (latched != FaultCode::None && faults_.latched() == FaultCode::None) faults_.relatch(latched);  // a reset is no fault reset
+      return;
+    }
+    case NmtCommand::ResetCommunication:
+      enabled_ = false;
+      negotiated_minor_ = 0xFF;
+      command_sequence_.reset();
+      nmt_state_ = NodeState::Boot;
+      send_heartbeat();
+      nmt_state_ = NodeState::PreOperational;
+      send_identity();
+      return;
+  }
+  send_heartbeat();  // acknowledge the transition at once
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::handle_control(const Control& m, std::uint64_t now_us) {
+  switch (m.command) {
+    case ControlCommand::Enable:
+      // Explicit enable: only operational, fault-free, negotiated, E-stop loop closed, no calibration.
+      if (nmt_state_ == NodeState::Operational && faults_.latched() == FaultCode::None &&
+          negotiated_minor_ != 0xFF && !last_sample_.estop_input && cal_status_ != CalibrationStatus::Running) {
+        enabled_ = true;
+        command_ = JointArray{};
+        command_sequence_.reset();
+        last_command_us_ = now_us;  // the watchdog starts counting at enable
+      }
+      break;
+    case ControlCommand::Disable: enabled_ = false; break;
+    case ControlCommand::FaultReset:
+      if (faults_.latched() != FaultCode::None && !last_sample_.estop_input) {
+        faults_.clear_latch();
+        enabled_ = false;
+        queue(Emergency{node_id_, FaultCode::None, 0xFF,
+                        static_cast<std::uint8_t>(faults_.count() > 255 ? 255 : faults_.count()), 0});
+      }
+      break;
+  }
+  send_heartbeat();
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::handle_hello(const Hello& m) {
+  // Major must match; the minor is the highest both sides speak.
+  if (m.protocol_major == kProtocolMajor) {
+    negotiated_minor_ = m.protocol_minor < kProtocolMinor ? m.protocol_minor : kProtocolMinor;
+  } else {
+    negotiated_minor_ = 0xFF;
+    enabled_ = false;
+  }
+  send_identity();
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::handle_parameter(const ParameterRequest& m) {
+  ParameterResponse r{node_id_, m.op, false, m.type, m.index, 0};
+  AbortCode abort = AbortCode::None;
+  switch (m.op) {
+    case ParameterOp::Read: abort = params_.read(m.index, r.type, r.raw_value); break;
+    case ParameterOp::Write:
+      // Limits never change under torque: writes only while disabled.
+      abort = enabled_ ? AbortCode::WrongState : params_.write(m.index, m.type, m.raw_value);
+      if (abort == AbortCode::None) r.raw_value = m.raw_value;
+      break;
+    case ParameterOp::Save: {
+      if (enabled_) { abort = AbortCode::WrongState; break; }
+      sync_fault_parameters();
+      std::uint8_t image[ParameterStore::kImageSize];
+      const std::size_t n = params_.serialize(image, sizeof image);
+      if (n == 0 || !hw_.storage_write(image, n)) abort = AbortCode::StorageFailed;
+      break;
+    }
+    case ParameterOp::RestoreDefaults:
+      if (enabled_) { abort = AbortCode::WrongState; break; }
+      params_.restore_defaults();
+      params_.set_internal(param::kSerial, serial_);
+      params_.set_internal(param::kNodeId, node_id_);  // the id changes only through a write + reset
+      break;
+  }
+  if (abort != AbortCode::None) {
+    r.aborted = true;
+    r.raw_value = static_cast<std::uint32_t>(abort);
+  }
+  queue(r);
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::handle_calibration(const CalibrationCommand& m, std::uint64_t now_us) {
+  if (m.procedure == CalibrationProcedure::Abort) {
+    if (cal_status_ == CalibrationStatus::Running) finish_calibration(CalibrationStatus::Aborted, 0);
+    return;
+  }
+  cal_procedure_ = m.procedure;
+  // Calibration moves motors on its own authority: only pre-operational, disabled and fault-free.
+  if (nmt_state_ != NodeState::PreOperational || enabled_ || faults_.latched() != FaultCode::None ||
+      m.joint_mask == 0 || cal_status_ == CalibrationStatus::Running) {
+    queue(CalibrationProgress{node_id_, m.procedure, CalibrationStatus::Failed, 0, 0, -1});
+    return;
+  }
+  cal_status_ = CalibrationStatus::Running;
+  cal_mask_ = m.joint_mask;
+  cal_max_current_ = m.max_current;
+  cal_samples_ = 0;
+  cal_sum_ = JointArray{};
+  cal_joint_ = 0;
+  while (cal_joint_ < kJointCount && !(cal_mask_ & (1u << cal_joint_))) ++cal_joint_;
+  cal_started_us_ = now_us;
+  next_cal_progress_us_ = now_us;
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::finish_calibration(CalibrationStatus status, std::int32_t result) {
+  cal_status_ = status;
+  queue(CalibrationProgress{node_id_, cal_procedure_, status,
+                            static_cast<std::uint8_t>(status == CalibrationStatus::Done ? 100 : 0),
+                            static_cast<std::uint8_t>(cal_joint_ < kJointCount ? cal_joint_ : 0), result});
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+JointArray Node<Hw>::calibration_output(const HardwareSample& s, std::uint64_t now_us) {
+  JointArray out{};
+  std::uint8_t percent = 0;
+  if (cal_procedure_ == CalibrationProcedure::CurrentOffset) {
+    // Zero output; the mean measured current is the sensor offset.
+    for (int j = 0; j < kJointCount; ++j) cal_sum_[j] += s.current[j];
+    ++cal_samples_;
+    percent = static_cast<std::uint8_t>(100 * cal_samples_ / kCurrentOffsetSamples);
+    if (cal_samples_ >= kCurrentOffsetSamples) {
+      std::int32_t result_uA = 0;
+      for (int j = 0; j < kJointCount; ++j) {
+        if (!(cal_mask_ & (1u << j))) continue;
+        const float offset = cal_sum_[j] / static_cast<float>(cal_samples_);
+        params_.set_internal_f32(static_cast<std::uint16_t>(param::kCurrentOffset + j), clampf(offset, -5, 5));
+        result_uA = static_cast<std::int32_t>(std::lround(offset * 1e6f));
+        cal_joint_ = static_cast<std::uint8_t>(j);
+      }
+      finish_calibration(CalibrationStatus::Done, result_uA);
+      return out;
+    }
+  } else if (cal_procedure_ == CalibrationProcedure::FindIndex) {
+    // Creep each selected joint with a bounded current until its encoder index pulse; the raw
+    // position there becomes the joint's zero.
+    if (now_us - cal_started_us_ > kFindIndexTimeout_us) {
+      finish_calibration(CalibrationStatus::Failed, cal_joint_);
+      return out;
+    }
+    if (s.index_seen[cal_joint_]) {
+      const float raw = s.position[cal_joint_];
+      params_.set_internal_f32(static_cast<std::uint16_t>(param::kPositionOffset + cal_joint_), clampf(-raw, -10, 10));
+      const std::uint8_t done_joint = cal_joint_;
+      ++cal_joint_;
+      while (cal_joint_ < kJointCount && !(cal_mask_ & (1u << cal_joint_))) ++cal_joint_;
+      if (cal_joint_ >= kJointCount) {
+        cal_joint_ = done_joint;
+        finish_calibration(CalibrationStatus::Done, static_cast<std::int32_t>(std::lround(-raw * 1e6f)));
+        return out;
+      }
+      cal_started_us_ = now_us;
+    } else {
+      const float limit = params_.f32(static_cast<std::uint16_t>(param::kMaxCurrent + cal_joint_));
+      out[cal_joint_] = clampf(cal_max_current_, 0, limit);
+    }
+    percent = static_cast<std::uint8_t>(100 * cal_joint_ / kJointCount);
+  }
+  if (now_us >= next_cal_progress_us_) {
+    next_cal_progress_us_ = now_us + kCalibrationProgressPeriod_us;
+    queue(CalibrationProgress{node_id_, cal_procedure_, CalibrationStatus::Running, percent > 100 ? std::uint8_t{100} : percent,
+                              cal_joint_, 0});
+  }
+  return out;
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::tick(std::uint64_t now_us) {
+  if (nmt_state_ == NodeState::Boot) return;
+  HardwareSample s = hw_.sense();
+  for (int j = 0; j < kJointCount; ++j) {
+    s.position[j] += params_.f32(static_cast<std::uint16_t>(param::kPositionOffset + j));
+    s.current[j] -= params_.f32(static_cast<std::uint16_t>(param::kCurrentOffset + j));
+  }
+  last_sample_ = s;
+  position_ = s.position;
+  check_faults(s, now_us);
+
+  if (cal_status_ == CalibrationStatus::Running && faults_.latched() == FaultCode::None) {
+    applied_ = calibration_output(s, now_us);
+    limiter_ = Limiter::None;
+  } else {
+    if (cal_status_ == CalibrationStatus::Running) finish_calibration(CalibrationStatus::Aborted, 0);
+    applied_ = limited_output(s);
+  }
+  hw_.apply_currents(applied_);
+
+  if (now_us >= next_heartbeat_us_) {
+    send_heartbeat();
+    next_heartbeat_us_ = now_us + 1000ull * params_.u32(param::kHeartbeatPeriod_ms);
+  }
+  if (nmt_state_ != NodeState::Stopped && now_us >= next_aux_us_) {
+    next_aux_us_ = now_us + 1000ull * params_.u32(param::kAuxPeriod_ms);
+    queue(AuxState{node_id_, aux_counter_++, s.pedal, s.estop_input, s.handle_button, clampf(s.roll_rad, -3.1416f, 3.1416f),
+                   clampf(s.jaw_rad, 0, 3.1416f), clampf(s.bus_V, 0, 100)});
+    JointArray measured{};
+    for (int j = 0; j < kJointCount; ++j) measured[j] = clampf(s.current[j], -30, 30);
+    const float t = clampf(s.board_temperature_degC, -40, 125);
+    queue(CurrentState{node_id_, current_state_counter_++, static_cast<std::int8_t>(std::lround(t)), measured});
+  }
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::check_faults(const HardwareSample& s, std::uint64_t now_us) {
+  if (s.estop_input) raise(FaultCode::EmergencyStop, 0xFF, 1);
+  if (faults_.latched() != FaultCode::None) return;
+  if (enabled_) {
+    const std::uint64_t silent_us = now_us - last_command_us_;
+    if (silent_us > params_.u32(param::kWatchdogTimeout_us)) {
+      raise(FaultCode::CommandWatchdog, 0xFF, static_cast<std::int16_t>(silent_us / 1000 > 32767 ? 32767 : silent_us / 1000));
+      return;
+    }
+  }
+  const float overcurrent = params_.f32(param::kOvercurrentFactor);
+  const float overspeed = params_.f32(param::kOverspeedFactor);
+  for (int j = 0; j < kJointCount; ++j) {
+    const auto jj = static_cast<std::uint16_t>(j);
+    const auto joint = static_cast<std::uint8_t>(j);
+    if (std::fabs(s.current[j]) > overcurrent * params_.f32(param::kMaxCurrent + jj))
+      return raise(FaultCode::OverCurrent, joint, static_cast<std::int16_t>(clampf(s.current[j] * 1000, -32767, 32767)));
+    if (std::fabs(s.velocity[j]) > overspeed * params_.f32(param::kMaxVelocity + jj))
+      return raise(FaultCode::OverSpeed, joint, static_cast<std::int16_t>(clampf(s.velocity[j] * 1000, -32767, 32767)));
+    const float lo = params_.f32(param::kJointMin + jj), hi = params_.f32(param::kJointMax + jj);
+    const float margin = 0.1f * (hi - lo);  // beyond the soft range by this much: sensor or mechanics broke
+    if (enabled_ && (s.position[j] < lo - margin || s.position[j] > hi + margin))
+      return raise(FaultCode::JointRangeExceeded, joint, static_cast<std::int16_t>(clampf(s.position[j] * 1e4f, -32767, 32767)));
+  }
+  if (s.bus_V < params_.f32(param::kMinBus_V))
+    return raise(FaultCode::UnderVoltage, 0xFF, static_cast<std::int16_t>(s.bus_V * 100));
+  if (s.bus_V > params_.f32(param::kMaxBus_V))
+    return raise(FaultCode::OverVoltage, 0xFF, static_cast<std::int16_t>(clampf(s.bus_V * 100, 0, 32767)));
+  if (s.board_temperature_degC > params_.f32(param::kMaxBoardTemperature_degC))
+    return raise(FaultCode::OverTemperature, 0xFF, static_cast<std::int16_t>(s.board_temperature_degC));
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+JointArray Node<Hw>::limited_output(const HardwareSample& s) {
+  JointArray out{};
+  if (faults_.latched() != FaultCode::None) { limiter_ = Limiter::Fault; return out; }
+  if (!enabled_ || nmt_state_ != NodeState::Operational) { limiter_ = Limiter::Disabled; return out; }
+  Limiter worst = Limiter::None;
+  auto note = [&worst](Limiter l) { if (static_cast<std::uint8_t>(l) > static_cast<std::uint8_t>(worst)) worst = l; };
+  for (int j = 0; j < kJointCount; ++j) {
+    const auto jj = static_cast<std::uint16_t>(j);
+    const float nm_per_A = params_.f32(param::kTorqueConstant + jj) * params_.f32(param::kGearRatio + jj);
+    float amps = command_mode_ == CommandMode::JointTorque ? command_[j] / nm_per_A : command_[j];
+    const float max_torque_amps = params_.f32(param::kMaxTorque + jj) / nm_per_A;
+    if (std::fabs(amps) > max_torque_amps) { amps = std::copysign(max_torque_amps, amps); note(Limiter::Torque); }
+    const float max_amps = params_.f32(param::kMaxCurrent + jj);
+    if (std::fabs(amps) > max_amps) { amps = std::copysign(max_amps, amps); note(Limiter::Current); }
+    // Beyond the speed limit, no current that accelerates further.
+    const float v = s.velocity[j];
+    if (std::fabs(v) > params_.f32(param::kMaxVelocity + jj) && amps * v > 0) { amps = 0; note(Limiter::Velocity); }
+    // Outside the joint range, no current that pushes further out.
+    if ((s.position[j] > params_.f32(param::kJointMax + jj) && amps > 0) ||
+        (s.position[j] < params_.f32(param::kJointMin + jj) && amps < 0)) { amps = 0; note(Limiter::JointRange); }
+    out[j] = amps;
+  }
+  limiter_ = worst;
+  return out;
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::raise(FaultCode code, std::uint8_t joint, std::int16_t detail) {
+  const FaultCode before = faults_.latched();
+  if (before == code) return;  // a held condition is one fault, not one per tick
+  faults_.raise(code, joint, detail);
+  enabled_ = false;
+  applied_ = JointArray{};
+  hw_.apply_currents(applied_);  // zero torque now, not at the next tick
+  sync_fault_parameters();
+  if (before == FaultCode::None || before != code)
+    queue(Emergency{node_id_, code, joint, static_cast<std::uint8_t>(faults_.count() > 255 ? 255 : faults_.count()), detail});
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::sync_fault_parameters() {
+  params_.set_internal(param::kFaultHistoryCount, faults_.count());
+  for (int k = 0; k < param::kFaultHistoryDepth; ++k)
+    params_.set_internal(static_cast<std::uint16_t>(param::kFaultHistory + k), faults_.entry(k));
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::send_joint_state() {
+  JointState js{node_id_, joint_state_counter_++, state(), enabled_, limiter_, {}};
+  js.position[0] = clampf(position_[0], -3.1416f, 3.1416f);
+  js.position[1] = clampf(position_[1], -3.1416f, 3.1416f);
+  js.position[2] = clampf(position_[2], -0.1f, 0.32f);
+  queue(js);
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::send_heartbeat() {
+  queue(Heartbeat{node_id_, state(), enabled_, faults_.latched()});
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::send_identity() {
+  queue(Identity{node_id_, kProtocolMajor, 0, kProtocolMinor, negotiated_minor_, serial_});
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::queue(const Message& m) {
+  CanFrame f;
+  if (encode(m, f) != EncodeError::None) return;  // node-built messages are in range by construction
+  if (tx_size_ == kTxQueueDepth) { ++tx_overflows_; return; }
+  tx_[(tx_head_ + tx_size_) % kTxQueueDepth] = f;
+  ++tx_size_;
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+bool Node<Hw>::pop_tx(CanFrame& out) {
+  if (tx_size_ == 0) return false;
+  out = tx_[tx_head_];
+  tx_head_ = (tx_head_ + 1) % kTxQueueDepth;
+  --tx_size_;
+  return true;
+}
+
+}  // namespace vesica::fp

@@ -1,0 +1,49 @@
+// What the reference firmware node needs from its board (moteus style: logic templated on hardware).
+// Use: implement a class with these members (the arm emulator does; a microcontroller port would),
+// then instantiate Node<YourHardware> (node.h). With C++20 the NodeHardware concept checks it.
+// Freestanding C++17.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "firmware_protocol/codec/messages.h"
+
+#if defined(__cpp_concepts) && __cpp_concepts >= 201907L
+#include <concepts>
+#endif
+
+namespace vesica::fp {
+
+// One sample of the board's sensors, SI units, taken at the start of each control tick.
+struct HardwareSample {
+  JointArray position{};      // rad, rad, m (after calibration offsets are applied by the node)
+  JointArray velocity{};      // rad/s, rad/s, m/s
+  JointArray current{};       // A, measured motor currents (before offset correction)
+  bool index_seen[kJointCount] = {};  // encoder index pulse seen since the last sample
+  float roll_rad = 0;
+  float jaw_rad = 0;
+  bool pedal = false;
+  bool handle_button = false;
+  bool estop_input = false;   // hard-wired E-stop loop open
+  float bus_V = 24;
+  float board_temperature_degC = 25;
+};
+
+#if defined(__cpp_concepts) && __cpp_concepts >= 201907L
+// sense(): read sensors. apply_currents(): command the current loops (A), zero = free.
+// storage_read/storage_write(): the parameter block in non-volatile memory; false on failure.
+template <class H>
+concept NodeHardware = requires(H& h, const JointArray& amps, std::uint8_t* dst, const std::uint8_t* src,
+                                std::size_t n) {
+  { h.sense() } -> std::same_as<HardwareSample>;
+  h.apply_currents(amps);
+  { h.storage_read(dst, n) } -> std::same_as<bool>;
+  { h.storage_write(src, n) } -> std::same_as<bool>;
+};
+#define VESICA_NODE_HARDWARE NodeHardware
+#else
+#define VESICA_NODE_HARDWARE typename
+#endif
+
+}  // namespace vesica::fp
