@@ -37,7 +37,7 @@ class RowAssembler {
   RowAssembler(const std::vector<ElementGeometry>& elements, const ElasticMaterial& material,
                const BemQuadratureOptions& options)
       : elements_(elements),
-        mu_(material.shear_modulus_Pa()),
+        mu_(LameMu(material)),
         nu_(material.poisson_ratio),
         options_(options) {
     for (int c = 0; c < 3; ++c) duffy_[c] = TriangleDuffy(c, options.duffy_order);
@@ -130,7 +130,7 @@ class RowAssembler {
 
 BemMatrices AssembleBemMatrices(const TriangleMesh& surface, const ElasticMaterial& material,
                                 const BemQuadratureOptions& options) {
-  ValidateElasticMaterial(material);
+  ValidateBemMaterial(material);
   ValidateTriangleMesh(surface, "BEM surface", SurfaceRequirement::kClosed);
   std::vector<ElementGeometry> elements(static_cast<std::size_t>(surface.num_triangles()));
   for (int f = 0; f < surface.num_triangles(); ++f) {

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "physics/bem/elastic_material.h"
+#include "physics/bem/bem_material.h"
 #include "physics/mesh/triangle_mesh.h"
 
 namespace vesica::physics {

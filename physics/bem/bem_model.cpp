@@ -27,7 +27,7 @@ BemModel PrecomputeBemModel(const TriangleMesh& surface, const ElasticMaterial& 
                             const std::string& source, const BemPrecomputeOptions& options,
                             GreensCacheStatus* cache_status) {
   ValidateTriangleMesh(surface, source, SurfaceRequirement::kClosed);
-  ValidateElasticMaterial(material);
+  ValidateBemMaterial(material);
   BemModel model;
   model.rest_surface = surface;
   model.material = material;

@@ -8,7 +8,7 @@
 
 #include "physics/bem/bem_matrices.h"
 #include "physics/bem/bem_reference_problem.h"
-#include "physics/bem/elastic_material.h"
+#include "physics/bem/bem_material.h"
 #include "physics/bem/greens_function_cache.h"
 #include "physics/mesh/triangle_mesh.h"
 

@@ -44,8 +44,8 @@ TEST(BemModelTest, RejectsMissingOrDegenerateFixedRegionAndBadMaterial) {
   } catch (const BemError& e) {
     EXPECT_NE(std::string(e.what()).find("non-collinear"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(PrecomputeBemModel(mesh, ElasticMaterial{-1.0, 0.4}, "liver"), BemError);
-  EXPECT_THROW(PrecomputeBemModel(mesh, ElasticMaterial{170e3, 0.5}, "liver"), BemError);
+  EXPECT_THROW(PrecomputeBemModel(mesh, ElasticMaterial{-1.0, 0.4, 1060.0}, "liver"), BemError);
+  EXPECT_THROW(PrecomputeBemModel(mesh, ElasticMaterial{170e3, 0.5, 1060.0}, "liver"), BemError);
 }
 
 TEST(BemModelTest, LumpedAreasSumToSurfaceArea) {

@@ -73,7 +73,7 @@ TEST(GreensFunctionCacheTest, PrecomputeUsesValidCacheAndRebuildsCorruptOrStaleO
   EXPECT_EQ(status, GreensCacheStatus::kCorrupt);
   EXPECT_EQ(rebuilt.greens, first.greens);
 
-  const BemModel softer = PrecomputeBemModel(mesh, ElasticMaterial{85e3, 0.4}, "cache test", options, &status);
+  const BemModel softer = PrecomputeBemModel(mesh, ElasticMaterial{85e3, 0.4, 1060.0}, "cache test", options, &status);
   EXPECT_EQ(status, GreensCacheStatus::kStale);
   // Same Poisson ratio, half the modulus: free-node displacements per unit traction double.
   EXPECT_NEAR((softer.greens.row(3 * first.layout.free_nodes[0]) - 2.0 * first.greens.row(3 * first.layout.free_nodes[0])).norm(),

@@ -1,4 +1,4 @@
-#include "physics/bem/elastic_material.h"
+#include "physics/bem/bem_material.h"
 
 #include <cmath>
 #include <string>
@@ -7,13 +7,13 @@
 
 namespace vesica::physics {
 
-void ValidateElasticMaterial(const ElasticMaterial& material) {
+void ValidateBemMaterial(const ElasticMaterial& material) {
   if (!std::isfinite(material.youngs_modulus_Pa) || material.youngs_modulus_Pa <= 0.0)
-    throw BemError("ElasticMaterial.youngs_modulus_Pa must be finite and > 0, got " +
+    throw BemError("BEM material: youngs_modulus_Pa must be finite and > 0, got " +
                    std::to_string(material.youngs_modulus_Pa));
   if (!std::isfinite(material.poisson_ratio) || material.poisson_ratio <= -1.0 ||
       material.poisson_ratio >= 0.5)
-    throw BemError("ElasticMaterial.poisson_ratio must lie in (-1, 0.5), got " +
+    throw BemError("BEM material: poisson_ratio must lie in (-1, 0.5), got " +
                    std::to_string(material.poisson_ratio));
 }
 
