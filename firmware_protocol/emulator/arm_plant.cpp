@@ -110,6 +110,7 @@ PlantSensors ArmPlant::ReadSensors() const {
   for (int m = 0; m < 3; ++m) {
     s.encoder_count[m] = encoders_[m].count();
     s.index_seen[m] = encoders_[m].index_seen();
+    s.index_edges[m] = encoders_[m].index_edges();
     s.current_A[m] = motors_[m].current_A() + p_.current_sensor_offset_A[m];
   }
   s.roll_rad = WrapPi(Quantize(q_[2] + p_.roll_sensor_offset_rad, p_.roll_sensor_lsb_rad));

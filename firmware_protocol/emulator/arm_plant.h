@@ -15,6 +15,7 @@ namespace vesica::fp::emulator {
 struct PlantSensors {
   std::array<std::int32_t, 3> encoder_count{};   ///< since power-up
   std::array<bool, 3> index_seen{};              ///< index edge passed since power-up
+  std::array<std::uint32_t, 3> index_edges{};    ///< index edges crossed since power-up
   std::array<double, 3> current_A{};            ///< true current + sensor offset
   double roll_rad = 0.0;                         ///< absolute sensor, wrapped to (-pi, pi]
   double jaw_rad = 0.0;                          ///< handle sensor, quantized

@@ -25,6 +25,7 @@ void IncrementalEncoder::Update(double motor_angle_rad) {
     const double edge_angle = p_.index_angle_rad + 2.0 * std::numbers::pi * static_cast<double>(edge_rev);
     index_count_ = static_cast<std::int32_t>(std::floor((edge_angle - power_up_angle_rad_) / radians_per_count()));
     index_seen_ = true;
+    index_edges_ += static_cast<std::uint32_t>(rev > revolution_ ? rev - revolution_ : revolution_ - rev);
     revolution_ = rev;
   }
 }

@@ -24,6 +24,8 @@ class IncrementalEncoder {
   bool index_seen() const { return index_seen_; }
   /// Count latched at the last index edge (valid when index_seen()).
   std::int32_t index_count() const { return index_count_; }
+  /// Index edges crossed since power-up, either direction (a board's "index seen" interrupt).
+  std::uint32_t index_edges() const { return index_edges_; }
   double radians_per_count() const;
 
  private:
@@ -35,6 +37,7 @@ class IncrementalEncoder {
   std::int32_t count_ = 0;
   bool index_seen_ = false;
   std::int32_t index_count_ = 0;
+  std::uint32_t index_edges_ = 0;
 };
 
 }  // namespace vesica::fp::emulator

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "firmware_protocol/emulator/arm_plant.h"
+#include "firmware_protocol/node/node_hardware.h"
+
+namespace vesica::fp::emulator {
+
+/// The arm's controller board as the reference firmware node sees it (NodeHardware): encoder
+/// counts turned into joint positions, a filtered velocity estimate, current sensors, the roll,
+/// jaw, pedal and E-stop inputs, and a parameter flash kept in memory.
+///
+/// Incremental encoders give positions relative to power-up; the board assumes the arm powers up
+/// parked at `park_position` (yaw, pitch, insertion), so an arm that was not quite parked reads
+/// off by the parking error until the node's FindIndex calibration runs.
+class EmulatedBoard {
+ public:
+  struct Config {
+    JointArray park_position{0.0f, 0.0f, 0.10f};  ///< rad, rad, m
+    double velocity_filter_s = 1e-3;              ///< first-order filter on encoder differences
+  };
+
+  EmulatedBoard(ArmPlant& plant, const Config& config);
+
+  // NodeHardware
+  HardwareSample sense();
+  void apply_currents(const JointArray& amps);
+  bool storage_read(std::uint8_t* dst, std::size_t n);
+  bool storage_write(const std::uint8_t* src, std::size_t n);
+
+  void set_estop_input(bool open) { estop_open_ = open; }
+  void set_handle_button(bool pressed) { handle_button_ = pressed; }
+  /// Flash contents (empty = blank board). Tests use it to corrupt the image.
+  std::vector<std::uint8_t>& flash() { return flash_; }
+  const JointArray& applied_currents() const { return applied_; }
+
+ private:
+  JointArray EncoderPositions(const PlantSensors& s) const;
+
+  ArmPlant& plant_;
+  Config config_;
+  JointArray applied_{};
+  JointArray last_position_{};
+  JointArray velocity_{};
+  std::array<std::uint32_t, 3> last_index_edges_{};
+  double last_sense_s_ = 0.0;
+  bool estop_open_ = false;
+  bool handle_button_ = false;
+  std::vector<std::uint8_t> flash_;
+};
+
+static_assert(NodeHardware<EmulatedBoard>);
+
+}  // namespace vesica::fp::emulator
