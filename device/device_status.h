@@ -9,6 +9,7 @@ enum class DeviceStatus {
   kOk,
   kNotOpen,          ///< call needs open() first
   kAlreadyOpen,
+  kConnecting,       ///< handshake with the node under way (version, start, enable)
   kNoResponse,       ///< open(): the node never answered within the timeout
   kLinkLost,         ///< no joint state for longer than the loss timeout; commands stopped
   kNodeFault,        ///< the node latched a fault (watchdog, limit, E-stop); needs ResetFault()
@@ -21,6 +22,7 @@ constexpr std::string_view ToString(DeviceStatus s) {
     case DeviceStatus::kOk: return "ok";
     case DeviceStatus::kNotOpen: return "not open";
     case DeviceStatus::kAlreadyOpen: return "already open";
+    case DeviceStatus::kConnecting: return "connecting";
     case DeviceStatus::kNoResponse: return "no response from node";
     case DeviceStatus::kLinkLost: return "link lost";
     case DeviceStatus::kNodeFault: return "node fault";

@@ -1,0 +1,323 @@
+#include "device/can_arm.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <variant>
+
+#include "firmware_protocol/node/parameter_table.h"
+
+namespace vesica::device {
+namespace {
+
+std::int64_t Ns(fp::Nanoseconds t) { return t.count(); }
+
+DeviceCapabilities MakeCapabilities(const CanArmConfig& c) {
+  DeviceCapabilities caps;
+  caps.model_name = c.model_name;
+  caps.joint_count = 4;
+  caps.position_dof = 3;
+  caps.rotation_dof = 3;  // yaw, pitch and roll give the full shaft orientation
+  caps.force_dof = 3;
+  caps.torque_dof = 0;
+  caps.has_gripper = true;
+  caps.button_count = 2;  // pedal, handle button
+  caps.max_force_N = c.actuation.max_tip_force_N;
+  caps.max_stiffness_N_per_m = 1000.0;
+  caps.workspace_radius_m = 0.25;
+  caps.servo_rate_hz = 1000.0;
+  return caps;
+}
+
+}  // namespace
+
+CanArm::CanArm(fp::Transport& transport, const CanArmConfig& config)
+    : transport_(transport),
+      config_(config),
+      capabilities_(MakeCapabilities(config)),
+      link_(config.loss_timeout.count()) {}
+
+DeviceStatus CanArm::Open() {
+  std::lock_guard lock(mu_);
+  if (phase_ != Phase::kClosed) return DeviceStatus::kAlreadyOpen;
+  if (const std::string_view bad = config_.actuation.FirstInvalidField(); !bad.empty()) {
+    last_error_ = "CanArmConfig.actuation." + std::string(bad) + " must be finite and > 0";
+    return DeviceStatus::kInvalidArgument;
+  }
+  if (config_.node_id < 1 || config_.node_id > fp::kMaxNodeId) {
+    last_error_ = "CanArmConfig.node_id must be 1..127, got " + std::to_string(config_.node_id);
+    return DeviceStatus::kInvalidArgument;
+  }
+  if (config_.loss_timeout.count() <= 0 || !(config_.velocity_filter_hz > 0.0) || !(config_.force_ramp_s >= 0.0)) {
+    last_error_ = "CanArmConfig: loss_timeout, velocity_filter_hz must be > 0, force_ramp_s >= 0";
+    return DeviceStatus::kInvalidArgument;
+  }
+  link_ = LinkMonitor(config_.loss_timeout.count());
+  state_sequence_.reset();
+  negotiated_ = false;
+  node_enabled_ = false;
+  node_fault_ = fp::FaultCode::None;
+  enabled_since_ns_ = -1;
+  last_handshake_ns_ = -1;
+  last_tick_ns_ = -1;
+  request_sent_ns_ = -1;
+  phase_ = Phase::kConnecting;
+  return DeviceStatus::kConnecting;
+}
+
+void CanArm::Close() {
+  std::lock_guard lock(mu_);
+  if (phase_ == Phase::kClosed) return;
+  Send(fp::Control{config_.node_id, control_counter_++, fp::ControlCommand::Disable}, transport_.now());
+  phase_ = Phase::kClosed;
+}
+
+DeviceStatus CanArm::StatusLocked() const {
+  if (phase_ == Phase::kClosed) return DeviceStatus::kNotOpen;
+  if (link_.ever_seen() && !link_.up()) return DeviceStatus::kLinkLost;
+  if (phase_ == Phase::kFault) return DeviceStatus::kNodeFault;
+  if (phase_ == Phase::kRunning) return DeviceStatus::kOk;
+  return DeviceStatus::kConnecting;
+}
+
+DeviceStatus CanArm::Status() const {
+  std::lock_guard lock(mu_);
+  return StatusLocked();
+}
+
+DeviceStatus CanArm::SetTipForce(const Eigen::Vector3d& f_T) {
+  if (!f_T.allFinite()) return DeviceStatus::kInvalidArgument;
+  std::lock_guard lock(mu_);
+  f_request_T_ = f_T;
+  return StatusLocked();
+}
+
+DeviceStatus CanArm::ResetFault() {
+  std::lock_guard lock(mu_);
+  if (phase_ == Phase::kClosed) return DeviceStatus::kNotOpen;
+  reset_requested_ = true;  // sent on the next Tick, from the servo thread
+  return DeviceStatus::kOk;
+}
+
+bool CanArm::Send(const fp::Message& m, fp::Nanoseconds now) {
+  fp::CanFrame f;
+  const fp::EncodeError e = fp::encode(m, f);
+  if (e != fp::EncodeError::None) {
+    last_error_ = std::string("encode failed: ") + fp::to_string(e);
+    ++send_failures_;
+    return false;
+  }
+  const fp::SendStatus s = transport_.send(f, now + config_.send_deadline);
+  if (s != fp::SendStatus::Queued) {
+    last_error_ = std::string("transport refused frame: ") + fp::to_string(s);
+    ++send_failures_;
+    return false;
+  }
+  return true;
+}
+
+void CanArm::HandleFrame(const fp::TimedFrame& rx) {
+  fp::Message m;
+  const fp::DecodeError e = fp::decode(rx.frame, m);
+  if (e != fp::DecodeError::None) {
+    decode_errors_.add(e);
+    return;
+  }
+  if (fp::spec_of(fp::kind_of(m)).per_node && fp::node_of(m) != config_.node_id) return;
+  const std::int64_t t = Ns(rx.timestamp);
+
+  if (const auto* js = std::get_if<fp::JointState>(&m)) {
+    const fp::DecodeError seq = state_sequence_.check(js->counter);
+    if (seq != fp::DecodeError::None) {
+      decode_errors_.add(seq);
+      return;
+    }
+    const ArmJoints prev = q_;
+    q_.yaw_rad = js->position[0];
+    q_.pitch_rad = js->position[1];
+    q_.insertion_m = js->position[2];
+    if (last_state_ns_ >= 0 && t > last_state_ns_) {
+      const double dt = 1e-9 * static_cast<double>(t - last_state_ns_);
+      const double alpha = 1.0 - std::exp(-2.0 * std::numbers::pi * config_.velocity_filter_hz * dt);
+      const Eigen::Vector4d raw = (q_.AsVector() - prev.AsVector()) / dt;
+      qd_[0] += alpha * (raw[0] - qd_[0]);
+      qd_[1] += alpha * (raw[1] - qd_[1]);
+      qd_[3] += alpha * (raw[3] - qd_[3]);
+    }
+    last_state_ns_ = t;
+    node_state_ = js->state;
+    node_enabled_ = js->enabled;
+    limiter_ = js->limiter;
+    link_.OnState(t);
+    if (request_sent_ns_ >= 0) {
+      round_trip_.Add(t - request_sent_ns_);
+      request_sent_ns_ = -1;
+    }
+  } else if (const auto* aux = std::get_if<fp::AuxState>(&m)) {
+    q_.roll_rad = aux->roll_rad;
+    jaw_rad_ = aux->jaw_rad;
+    buttons_ = (aux->pedal ? 1u : 0u) | (aux->handle_button ? 2u : 0u);
+  } else if (const auto* hb = std::get_if<fp::Heartbeat>(&m)) {
+    node_state_ = hb->state;
+    node_enabled_ = hb->enabled;
+    node_fault_ = hb->latched_fault;
+  } else if (const auto* id = std::get_if<fp::Identity>(&m)) {
+    negotiated_ = id->negotiated_minor != 0xFF;
+  } else if (const auto* pr = std::get_if<fp::ParameterResponse>(&m)) {
+    // Newest fault-history entry, asked for when a node is seen in Fault without its EMCY.
+    const std::uint32_t code = pr->raw_value & 0xFFu;
+    if (pr->index == fp::param::kFaultHistory && !pr->aborted && code != 0 && code < fp::kFaultCodeCount &&
+        node_state_ == fp::NodeState::Fault)
+      node_fault_ = static_cast<fp::FaultCode>(code);
+  } else if (const auto* em = std::get_if<fp::Emergency>(&m)) {
+    last_emergency_ = em->fault;
+    ++emergency_count_;
+    node_fault_ = em->fault;  // code None is the fault-reset acknowledgement
+    if (em->fault != fp::FaultCode::None) node_enabled_ = false;
+  }
+}
+
+void CanArm::SendHandshake(fp::Nanoseconds now) {
+  // One step of the handshake per retry period: version, NMT start, explicit enable.
+  if (last_handshake_ns_ >= 0 && Ns(now) - last_handshake_ns_ < config_.retry_period.count()) return;
+  last_handshake_ns_ = Ns(now);
+  if (!negotiated_) {
+    Send(fp::Hello{config_.node_id, fp::kProtocolMajor, fp::kProtocolMinor}, now);
+  } else if (node_state_ != fp::NodeState::Operational) {
+    Send(fp::Nmt{fp::NmtCommand::Start, config_.node_id}, now);
+  } else if (!node_enabled_) {
+    Send(fp::Control{config_.node_id, control_counter_++, fp::ControlCommand::Enable}, now);
+  }
+}
+
+void CanArm::SendCommand(fp::Nanoseconds now, bool zero) {
+  const std::int64_t t = Ns(now);
+  double ramp = 0.0;
+  if (!zero) {
+    const double on_s = 1e-9 * static_cast<double>(t - enabled_since_ns_);
+    ramp = config_.force_ramp_s > 0.0 ? std::clamp(on_s / config_.force_ramp_s, 0.0, 1.0) : 1.0;
+  }
+  last_command_ = TipForceToMotorCurrents(q_, ramp * f_request_T_, config_.actuation);
+  fp::CurrentCommand c{config_.node_id, command_counter_++, fp::CommandMode::MotorCurrent, {}};
+  for (int j = 0; j < 3; ++j) c.value[j] = static_cast<float>(last_command_.current_A[j]);
+  if (Send(c, now) && request_sent_ns_ < 0) request_sent_ns_ = t;
+}
+
+void CanArm::Tick() {
+  std::lock_guard lock(mu_);
+  if (phase_ == Phase::kClosed) return;
+  const fp::Nanoseconds now = transport_.now();
+  const std::int64_t t = Ns(now);
+  if (last_tick_ns_ >= 0) loop_period_.Add(t - last_tick_ns_);
+  last_tick_ns_ = t;
+
+  fp::TimedFrame rx;
+  while (transport_.receive(rx)) HandleFrame(rx);
+  fp::BusEvent ev;
+  while (transport_.poll_event(ev)) {
+    if (ev.kind == fp::BusEvent::Kind::DeviceLost) last_error_ = "transport: device lost";
+  }
+
+  if (link_.Poll(t) == LinkMonitor::Event::kLost) {
+    // Counters restart when the node comes back (it may have rebooted meanwhile).
+    state_sequence_.reset();
+    request_sent_ns_ = -1;
+    last_state_ns_ = -1;
+    qd_.setZero();
+  }
+  const bool link_ok = link_.up() || !link_.ever_seen();
+
+  if (reset_requested_) {
+    reset_requested_ = false;
+    Send(fp::Control{config_.node_id, control_counter_++, fp::ControlCommand::FaultReset}, now);
+    if (phase_ == Phase::kFault) phase_ = Phase::kConnecting;
+    node_fault_ = fp::FaultCode::None;  // until the node says otherwise
+    node_state_ = fp::NodeState::Boot;  // unknown until the next report
+    last_handshake_ns_ = -1;
+  }
+
+  if (node_fault_ != fp::FaultCode::None || node_state_ == fp::NodeState::Fault) {
+    phase_ = Phase::kFault;
+  } else if (phase_ == Phase::kFault) {
+    phase_ = Phase::kConnecting;  // fault cleared (by us or by someone else's reset)
+  }
+  if (phase_ == Phase::kRunning && !(node_enabled_ && node_state_ == fp::NodeState::Operational)) {
+    phase_ = Phase::kConnecting;
+  }
+  if (phase_ == Phase::kConnecting && node_enabled_ && node_state_ == fp::NodeState::Operational && negotiated_) {
+    phase_ = Phase::kRunning;
+    enabled_since_ns_ = t;
+  }
+
+  if (link_ok && node_state_ == fp::NodeState::Fault && node_fault_ == fp::FaultCode::None &&
+      (last_handshake_ns_ < 0 || t - last_handshake_ns_ >= config_.retry_period.count())) {
+    // The EMCY was lost (e.g. raised while the link was down): read the node's fault history.
+    last_handshake_ns_ = t;
+    Send(fp::ParameterRequest{config_.node_id, fp::ParameterOp::Read, fp::ParameterType::U32,
+                              fp::param::kFaultHistory, 0},
+         now);
+  }
+  if (!link_ok || phase_ == Phase::kFault) {
+    // Stop commanding; SYNC keeps sampling so the return of the node is noticed.
+    if (Send(fp::Sync{sync_counter_++}, now) && request_sent_ns_ < 0) request_sent_ns_ = t;
+    last_command_ = MotorCurrentCommand{};
+    if (phase_ != Phase::kFault) phase_ = Phase::kConnecting;
+    return;
+  }
+  if (phase_ == Phase::kRunning) {
+    SendCommand(now, false);
+    return;
+  }
+  // Connecting: handshake, and keep the node sampled (zero commands once it is operational, so
+  // the watchdog is fed from the moment the node enables).
+  SendHandshake(now);
+  if (negotiated_ && node_state_ == fp::NodeState::Operational) {
+    SendCommand(now, true);
+  } else if (Send(fp::Sync{sync_counter_++}, now) && request_sent_ns_ < 0) {
+    request_sent_ns_ = t;
+  }
+}
+
+JointState CanArm::GetJointState() const {
+  std::lock_guard lock(mu_);
+  JointState s;
+  s.count = 4;
+  const Eigen::Vector4d q = q_.AsVector();
+  for (int j = 0; j < 4; ++j) {
+    s.position[j] = q[j];
+    s.velocity[j] = qd_[j];
+    s.effort[j] = last_command_.joint_effort[j];
+  }
+  return s;
+}
+
+ToolState CanArm::GetToolState() const {
+  std::lock_guard lock(mu_);
+  ToolState s;
+  const TipPose pose = ForwardKinematics(q_);
+  s.p_BTip_B = pose.p_TTip_T;
+  s.R_BTip = pose.R_TTip;
+  const Eigen::Matrix<double, 6, 4> J = TipJacobian(q_);
+  s.v_BTip_B = J.topRows<3>() * qd_;
+  s.w_BTip_B = J.bottomRows<3>() * qd_;
+  s.gripper_angle_rad = jaw_rad_;
+  s.buttons = buttons_;
+  s.timestamp_ns = last_state_ns_;
+  return s;
+}
+
+ArmJoints CanArm::joints() const { std::lock_guard lock(mu_); return q_; }
+fp::NodeState CanArm::node_state() const { std::lock_guard lock(mu_); return node_state_; }
+fp::FaultCode CanArm::node_fault() const { std::lock_guard lock(mu_); return node_fault_; }
+fp::FaultCode CanArm::last_emergency() const { std::lock_guard lock(mu_); return last_emergency_; }
+std::uint32_t CanArm::emergency_count() const { std::lock_guard lock(mu_); return emergency_count_; }
+MotorCurrentCommand CanArm::last_command() const { std::lock_guard lock(mu_); return last_command_; }
+LatencyStatistics::Summary CanArm::loop_period() const { std::lock_guard lock(mu_); return loop_period_.Summarize(); }
+LatencyStatistics::Summary CanArm::round_trip() const { std::lock_guard lock(mu_); return round_trip_.Summarize(); }
+std::uint32_t CanArm::link_loss_count() const { std::lock_guard lock(mu_); return link_.loss_count(); }
+std::uint32_t CanArm::link_restore_count() const { std::lock_guard lock(mu_); return link_.restore_count(); }
+fp::DecodeErrorCounters CanArm::decode_errors() const { std::lock_guard lock(mu_); return decode_errors_; }
+std::uint64_t CanArm::send_failures() const { std::lock_guard lock(mu_); return send_failures_; }
+std::string CanArm::last_error() const { std::lock_guard lock(mu_); return last_error_; }
+
+}  // namespace vesica::device

@@ -1,0 +1,123 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <string>
+
+#include "device/arm_actuation.h"
+#include "device/haptic_device.h"
+#include "device/latency_statistics.h"
+#include "device/link_monitor.h"
+#include "device/spherical_arm_kinematics.h"
+#include "firmware_protocol/codec/codec.h"
+#include "firmware_protocol/transport/transport.h"
+
+namespace vesica::device {
+
+struct CanArmConfig {
+  std::uint8_t node_id = 1;                      ///< 1..127
+  ArmActuation actuation = ArmActuation::Nominal();
+  std::chrono::nanoseconds loss_timeout{std::chrono::milliseconds(10)};  ///< no state this long: lost
+  std::chrono::nanoseconds retry_period{std::chrono::milliseconds(20)};  ///< handshake resend
+  std::chrono::nanoseconds send_deadline{std::chrono::microseconds(500)};
+  double force_ramp_s = 0.05;          ///< force fades in over this after every enable, >= 0
+  double velocity_filter_hz = 50.0;    ///< joint velocity estimate from positions, > 0
+  std::string model_name = "Vesica 4-DOF spherical arm";
+};
+
+/// The host side of one arm on CAN (the bridge). Each Tick() is one servo cycle: read every
+/// frame that arrived, keep the link, node and joint state, then send either a current command
+/// (node enabled) or a SYNC (anything else, so the node's state is still sampled). The handshake
+/// (Hello, NMT start, explicit enable) runs inside Tick(), so Open() never blocks and a test can
+/// drive the whole thing on a virtual bus with an injected clock. Time is the transport's clock.
+///
+/// Loss: no joint state for loss_timeout -> status kLinkLost, commands stop (the node's watchdog
+/// then zeroes torque and latches a fault). When states return, a latched fault is reported as
+/// kNodeFault and nothing is re-enabled until ResetFault(): the user decides when force returns.
+/// Thread-safe: Tick() from the servo thread, the rest from any thread.
+class CanArm final : public HapticDevice {
+ public:
+  CanArm(fp::Transport& transport, const CanArmConfig& config);
+
+  DeviceStatus Open() override;
+  void Close() override;
+  const DeviceCapabilities& Capabilities() const override { return capabilities_; }
+  DeviceStatus Status() const override;
+  JointState GetJointState() const override;
+  ToolState GetToolState() const override;
+  DeviceStatus SetTipForce(const Eigen::Vector3d& f_T) override;
+  DeviceStatus ResetFault() override;
+
+  /// One servo cycle; call at 1 kHz.
+  void Tick();
+
+  // Diagnostics.
+  ArmJoints joints() const;
+  fp::NodeState node_state() const;
+  fp::FaultCode node_fault() const;          ///< latched fault as last reported, None if none
+  fp::FaultCode last_emergency() const;      ///< fault code of the last EMCY frame seen
+  std::uint32_t emergency_count() const;
+  MotorCurrentCommand last_command() const;
+  LatencyStatistics::Summary loop_period() const;  ///< between Tick() calls
+  LatencyStatistics::Summary round_trip() const;   ///< command/SYNC sent -> joint state back
+  std::uint32_t link_loss_count() const;
+  std::uint32_t link_restore_count() const;
+  fp::DecodeErrorCounters decode_errors() const;
+  std::uint64_t send_failures() const;
+  /// Why Open() refused, or the last transport refusal; empty if none.
+  std::string last_error() const;
+
+ private:
+  enum class Phase { kClosed, kConnecting, kRunning, kFault };
+
+  void HandleFrame(const fp::TimedFrame& rx);
+  bool Send(const fp::Message& m, fp::Nanoseconds now);
+  void SendHandshake(fp::Nanoseconds now);
+  void SendCommand(fp::Nanoseconds now, bool zero);
+  DeviceStatus StatusLocked() const;
+
+  fp::Transport& transport_;
+  CanArmConfig config_;
+  DeviceCapabilities capabilities_;
+  mutable std::mutex mu_;
+
+  Phase phase_ = Phase::kClosed;
+  LinkMonitor link_;
+  LatencyStatistics loop_period_;
+  LatencyStatistics round_trip_;
+  fp::DecodeErrorCounters decode_errors_;
+  fp::SequenceTracker state_sequence_;
+
+  // Node as last reported.
+  fp::NodeState node_state_ = fp::NodeState::Boot;
+  bool node_enabled_ = false;
+  bool negotiated_ = false;
+  fp::FaultCode node_fault_ = fp::FaultCode::None;
+  fp::FaultCode last_emergency_ = fp::FaultCode::None;
+  std::uint32_t emergency_count_ = 0;
+  fp::Limiter limiter_ = fp::Limiter::None;
+
+  // Arm state.
+  ArmJoints q_;
+  Eigen::Vector4d qd_ = Eigen::Vector4d::Zero();
+  std::int64_t last_state_ns_ = -1;
+  double jaw_rad_ = 0.0;
+  std::uint32_t buttons_ = 0;
+
+  // Commands.
+  Eigen::Vector3d f_request_T_ = Eigen::Vector3d::Zero();
+  MotorCurrentCommand last_command_;
+  std::int64_t enabled_since_ns_ = -1;
+  std::int64_t last_handshake_ns_ = -1;
+  std::int64_t last_tick_ns_ = -1;
+  std::int64_t request_sent_ns_ = -1;  ///< awaiting the joint state that answers it
+  std::uint8_t sync_counter_ = 0;
+  std::uint8_t command_counter_ = 0;
+  std::uint8_t control_counter_ = 0;
+  bool reset_requested_ = false;
+  std::uint64_t send_failures_ = 0;
+  std::string last_error_;
+};
+
+}  // namespace vesica::device
