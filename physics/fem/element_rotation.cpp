@@ -1,5 +1,6 @@
 #include "physics/fem/element_rotation.h"
 
+#include <Eigen/LU>
 #include <Eigen/SVD>
 
 namespace vesica::physics {

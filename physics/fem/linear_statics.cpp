@@ -1,6 +1,10 @@
 #include "physics/fem/linear_statics.h"
 
+#include <algorithm>
 #include <sstream>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 #include "physics/fem/cholmod_solver.h"
 #include "physics/fem/elastic_forces.h"
@@ -8,11 +12,38 @@
 
 namespace vesica::physics {
 
+namespace {
+
+// True when the fixed dofs block all six rigid motions: the rigid modes (3 translations,
+// 3 rotations about the centroid, arms scaled by the body's size) restricted to the fixed dofs
+// must have full rank. CHOLMOD alone cannot tell: round-off makes a singular K look positive.
+bool FixedDofsRemoveRigidMotions(const FemModel& m) {
+  const Vertices& x = m.rest_mesh.vertices;
+  const Eigen::RowVector3d centre = x.colwise().mean();
+  const double size = std::max((x.colwise().maxCoeff() - x.colwise().minCoeff()).maxCoeff(), 1e-300);
+  Eigen::Matrix<double, 6, 6> gram = Eigen::Matrix<double, 6, 6>::Zero();
+  for (int dof : m.fixed_dofs) {
+    const int axis = dof % 3;
+    const Eigen::Vector3d r = (x.row(dof / 3) - centre).transpose() / size;
+    Eigen::Matrix<double, 6, 1> row = Eigen::Matrix<double, 6, 1>::Zero();
+    row[axis] = 1.0;
+    // Component `axis` of omega x r for unit omega along each axis.
+    for (int w = 0; w < 3; ++w) row[3 + w] = Eigen::Vector3d::Unit(w).cross(r)[axis];
+    gram += row * row.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(gram);
+  return eig.eigenvalues()[0] > 1e-10 * eig.eigenvalues()[5];
+}
+
+}  // namespace
+
 Eigen::VectorXd SolveLinearStatics(const FemModel& m, const Eigen::VectorXd& f, const Eigen::VectorXd& prescribed) {
   const std::string& name = m.settings.body_name;
   const int n = m.num_dofs();
   if (m.fixed_dofs.empty())
     throw FemError(name + ": linear statics needs fixed nodes, none were given (the body could move rigidly)");
+  if (!FixedDofsRemoveRigidMotions(m))
+    throw FemError(name + ": the fixed nodes leave a rigid motion free (statics needs at least 3 non-collinear fixed nodes or equivalent)");
   if (f.size() != n || (prescribed.size() != 0 && prescribed.size() != n)) {
     std::ostringstream os;
     os << name << ": linear statics got force of size " << f.size() << " and prescribed displacement of size "
