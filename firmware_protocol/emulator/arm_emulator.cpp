@@ -50,6 +50,12 @@ void ArmEmulator::RunUntil(Nanoseconds t) {
     Flush(next_tick_);
     next_tick_ += config_.tick_period;
   }
+  // Frames that arrived since the last tick are answered now, not at the next tick boundary.
+  TimedFrame rx;
+  while (transport_.receive(rx)) {
+    node_->on_frame(rx.frame, Micros(rx.timestamp < t ? rx.timestamp : t));
+    Flush(t);
+  }
 }
 
 }  // namespace vesica::fp::emulator

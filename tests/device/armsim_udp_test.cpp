@@ -1,0 +1,64 @@
+// The same bridge against vesica-armsim in its own process, over CAN-over-UDP on loopback.
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "armsim_process.h"
+#include "device/bridge_loop.h"
+#include "device/can_arm.h"
+
+namespace vesica::device {
+namespace {
+
+using namespace std::chrono_literals;
+
+TEST(ArmsimUdpTest, SeparateProcessEmulatorWorksWithTheSameBridge) {
+  const std::uint16_t arm_port = testing::FreeUdpPort();
+  std::string error;
+  auto host = fp::UdpTransport::open({.local_port = 0, .remote_port = arm_port}, error);
+  ASSERT_TRUE(host) << error;
+  ASSERT_NE(arm_port, 0);
+
+  testing::ArmsimProcess armsim;
+  ASSERT_TRUE(armsim.Start(VESICA_ARMSIM_PATH,
+                           {"--local-port", std::to_string(arm_port), "--remote-port",
+                            std::to_string(host->local_port()), "--duration-s", "2.5", "--report",
+                            "--log-level", "warn"}));
+
+  CanArm arm(*host, CanArmConfig{});
+  ASSERT_EQ(arm.Open(), DeviceStatus::kConnecting);
+  BridgeLoop loop(arm);
+  loop.Start();
+  DeviceStatus status = DeviceStatus::kConnecting;
+  for (int i = 0; i < 150 && status != DeviceStatus::kOk; ++i) {
+    std::this_thread::sleep_for(10ms);
+    status = arm.Status();
+  }
+  ASSERT_EQ(status, DeviceStatus::kOk) << ToString(status) << " " << arm.last_error();
+  const Eigen::Vector3d f(0.8, -0.4, 1.2);
+  arm.SetTipForce(f);
+
+  std::string report;
+  const int rc = armsim.Finish(&report);  // the arm runs 2.5 s, then reports and exits
+  loop.Stop();
+  ASSERT_EQ(rc, 0) << report;
+
+  double h[3], a[3];
+  ASSERT_EQ(std::sscanf(report.c_str(), "hand_force_N=%lf,%lf,%lf actuator_force_N=%lf,%lf,%lf", &h[0], &h[1],
+                        &h[2], &a[0], &a[1], &a[2]),
+            6)
+      << report;
+  const Eigen::Vector3d felt(h[0], h[1], h[2]);
+  EXPECT_LT((felt - f).norm(), 0.05 * f.norm()) << "felt " << felt.transpose() << " report: " << report;
+  EXPECT_NE(report.find("state=Operational"), std::string::npos) << report;
+
+  const auto rt = arm.round_trip();
+  EXPECT_GT(rt.count, 1000u);        // about one answered command per millisecond
+  EXPECT_LT(rt.p50_ns, 5e6);         // loopback UDP + a 100 us node tick
+  EXPECT_EQ(arm.decode_errors().total(), 0u);
+}
+
+}  // namespace
+}  // namespace vesica::device
