@@ -1,0 +1,100 @@
+#include "physics/fem/elastic_forces.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "physics/fem/element_rotation.h"
+#include "tests/fem/fem_test_support.h"
+
+namespace vesica::physics {
+namespace {
+
+FemModel Block(ElementModel model) {
+  FemSettings s;
+  s.element_model = model;
+  s.material.youngs_modulus_Pa = 2300.0;
+  s.material.poisson_ratio = 0.45;
+  return BuildFemModel(MakeBoxTetMesh({0.08, 0.03, 0.03}, {8, 3, 3}), s, {});
+}
+
+// Displacement of a rigid rotation by `angle` about `axis` through point c.
+Eigen::VectorXd RigidRotation(const FemModel& m, const Eigen::Vector3d& axis, double angle, const Eigen::Vector3d& c) {
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+  Eigen::VectorXd u(m.num_dofs());
+  for (int i = 0; i < m.num_nodes(); ++i) {
+    const Eigen::Vector3d x = m.rest_mesh.vertices.row(i);
+    u.segment<3>(3 * i) = r * (x - c) + c - x;
+  }
+  return u;
+}
+
+// Load scale: the nodal force of a 1% strain, E * strain * (element face area).
+double LoadScale() { return 2300.0 * 0.01 * 0.01 * 0.01; }
+
+TEST(ElasticForcesTest, CorotationalForcesVanishUnderRigidRotationWhereLinearOnesDoNot) {
+  const FemModel corotational = Block(ElementModel::kCorotational);
+  const FemModel linear = Block(ElementModel::kLinear);
+  const Eigen::VectorXd u = RigidRotation(corotational, {1.0, 2.0, 0.5}, M_PI / 2.0, {0.01, 0.02, -0.03});
+  Eigen::VectorXd f_corot, f_linear;
+  const double e_corot = ComputeElasticForces(corotational, u, nullptr, &f_corot);
+  const double e_linear = ComputeElasticForces(linear, u, nullptr, &f_linear);
+  EXPECT_LT(f_corot.cwiseAbs().maxCoeff(), 1e-9 * LoadScale());
+  EXPECT_LT(std::abs(e_corot), 1e-15);
+  EXPECT_GT(f_linear.cwiseAbs().maxCoeff(), 10.0 * LoadScale());  // linear FEM sees a huge "strain"
+  EXPECT_GT(e_linear, 0.0);
+}
+
+TEST(ElasticForcesTest, CorotationalMatchesLinearForSmallDisplacements) {
+  const FemModel corotational = Block(ElementModel::kCorotational);
+  const FemModel linear = Block(ElementModel::kLinear);
+  Eigen::VectorXd u(corotational.num_dofs());
+  for (int i = 0; i < corotational.num_nodes(); ++i) {
+    const Eigen::Vector3d x = corotational.rest_mesh.vertices.row(i);
+    u.segment<3>(3 * i) = 1e-7 * Eigen::Vector3d(std::sin(40 * x.x()), x.y() * x.z() * 100, std::cos(30 * x.z()));
+  }
+  Eigen::VectorXd f_corot, f_linear, k_corot;
+  ComputeElasticForces(corotational, u, &k_corot, &f_corot);
+  ComputeElasticForces(linear, u, nullptr, &f_linear);
+  EXPECT_LT((f_corot - f_linear).norm(), 1e-5 * f_linear.norm());
+  EXPECT_LT((k_corot - linear.linear_stiffness_values).cwiseAbs().maxCoeff(),
+            1e-5 * linear.linear_stiffness_values.cwiseAbs().maxCoeff());
+}
+
+TEST(ElasticForcesTest, InternalForceIsTheEnergyGradient) {
+  const FemModel m = Block(ElementModel::kCorotational);
+  Eigen::VectorXd u = RigidRotation(m, {0, 1, 1}, 0.7, {0, 0, 0});
+  for (int i = 0; i < m.num_nodes(); ++i) u[3 * i] += 0.1 * m.rest_mesh.vertices(i, 0);  // 10% stretch
+  Eigen::VectorXd f;
+  ComputeElasticForces(m, u, nullptr, &f);
+  // Central differences of the energy along a few dofs.
+  for (int dof : {5, 40, 101, 3 * m.num_nodes() - 1}) {
+    const double h = 1e-7;
+    Eigen::VectorXd up = u, um = u, dummy;
+    up[dof] += h;
+    um[dof] -= h;
+    const double derivative = (ComputeElasticForces(m, up, nullptr, &dummy) - ComputeElasticForces(m, um, nullptr, &dummy)) / (2 * h);
+    EXPECT_NEAR(f[dof], derivative, 1e-5 * f.cwiseAbs().maxCoeff()) << "dof " << dof;
+  }
+}
+
+TEST(ElementRotationTest, RecoversRotationFromRotatedStretch) {
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(2.0, Eigen::Vector3d(0.3, -1, 2).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d stretch = Eigen::Vector3d(1.3, 0.8, 1.05).asDiagonal();
+  EXPECT_LT((RotationFromDeformationGradient(r * stretch) - r).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(ElementRotationTest, InvertedElementStillGivesAProperRotation) {
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d inverted = r * Eigen::Vector3d(1.0, 1.0, -0.2).asDiagonal();
+  const Eigen::Matrix3d q = RotationFromDeformationGradient(inverted);
+  EXPECT_NEAR(q.determinant(), 1.0, 1e-12);
+  EXPECT_LT((q.transpose() * q - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 1e-12);
+  // Flipping the smallest axis keeps the rotation of the undeformed part: q = r.
+  EXPECT_LT((q - r).cwiseAbs().maxCoeff(), 1e-12);
+  const Eigen::Matrix3d flat = r * Eigen::Vector3d(1.0, 1.0, 0.0).asDiagonal();
+  EXPECT_NEAR(RotationFromDeformationGradient(flat).determinant(), 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace vesica::physics

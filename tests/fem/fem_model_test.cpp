@@ -1,0 +1,114 @@
+#include "physics/fem/fem_model.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include "physics/fem/elastic_forces.h"
+#include "physics/fem/fem_error.h"
+#include "physics/mesh/mesh_validation.h"
+#include "tests/fem/fem_test_support.h"
+
+namespace vesica::physics {
+namespace {
+
+FemModel UnitBlock(MassModel mass) {
+  FemSettings s;
+  s.mass_model = mass;
+  s.material.density_kg_per_m3 = 1070.0;
+  return BuildFemModel(MakeBoxTetMesh({0.02, 0.03, 0.04}, {2, 3, 2}), s, {});
+}
+
+Eigen::MatrixXd Dense(const FemModel& m, const Eigen::VectorXd& values) {
+  return Eigen::MatrixXd(PatternMatrix(m.pattern, values));
+}
+
+TEST(FemModelTest, StiffnessIsSymmetricWithRigidModesInItsNullSpace) {
+  const FemModel m = UnitBlock(MassModel::kLumped);
+  const Eigen::MatrixXd k = Dense(m, m.linear_stiffness_values);
+  const double scale = k.cwiseAbs().maxCoeff();
+  EXPECT_LT((k - k.transpose()).cwiseAbs().maxCoeff(), 1e-12 * scale);
+  for (int w = 0; w < 3; ++w) {
+    Eigen::VectorXd translation(m.num_dofs()), rotation(m.num_dofs());
+    for (int i = 0; i < m.num_nodes(); ++i) {
+      translation.segment<3>(3 * i) = Eigen::Vector3d::Unit(w);
+      rotation.segment<3>(3 * i) = Eigen::Vector3d::Unit(w).cross(Eigen::Vector3d(m.rest_mesh.vertices.row(i)));
+    }
+    EXPECT_LT((k * translation).cwiseAbs().maxCoeff(), 1e-10 * scale);
+    EXPECT_LT((k * rotation).cwiseAbs().maxCoeff(), 1e-10 * scale * 0.04);
+  }
+  // Positive semi-definite with exactly six zero modes.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(k);
+  EXPECT_GT(eig.eigenvalues()[6], 1e-6 * scale);
+  EXPECT_LT(std::abs(eig.eigenvalues()[5]), 1e-9 * scale);
+}
+
+TEST(FemModelTest, LumpedAndConsistentMassBothSumToTheBodyMass) {
+  const double mass = 1070.0 * 0.02 * 0.03 * 0.04;
+  const FemModel lumped = UnitBlock(MassModel::kLumped);
+  const FemModel consistent = UnitBlock(MassModel::kConsistent);
+  EXPECT_NEAR(lumped.lumped_mass_kg.sum(), 3.0 * mass, 1e-14);
+  // 1^T M 1 per axis is the total mass for a consistent matrix too.
+  const Eigen::VectorXd ones_x = Eigen::Vector3d::UnitX().replicate(consistent.num_nodes(), 1);
+  EXPECT_NEAR(ones_x.dot(consistent.MassTimes(ones_x)), mass, 1e-14);
+  const Eigen::MatrixXd mc = Dense(consistent, consistent.consistent_mass_values);
+  EXPECT_LT((mc - mc.transpose()).cwiseAbs().maxCoeff(), 1e-18);
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(mc).eigenvalues()[0], 0.0);
+  const Eigen::Vector3d g(0, 0, -9.81);
+  EXPECT_NEAR(consistent.GravityForces(g).sum(), -9.81 * mass, 1e-13);
+}
+
+TEST(FemModelTest, BadMaterialIsAnErrorNamingBodyAndField) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({1, 1, 1}, {1, 1, 1});
+  auto message = [&](const FemSettings& s) {
+    try {
+      BuildFemModel(mesh, s, {});
+    } catch (const FemError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  FemSettings s;
+  s.body_name = "gallbladder";
+  s.material.poisson_ratio = 0.5;
+  EXPECT_NE(message(s).find("gallbladder: material poisson_ratio = 0.5"), std::string::npos) << message(s);
+  s.material.poisson_ratio = 0.45;
+  s.material.youngs_modulus_Pa = 0.0;
+  EXPECT_NE(message(s).find("youngs_modulus_Pa"), std::string::npos) << message(s);
+  s.material.youngs_modulus_Pa = -3.0;
+  EXPECT_NE(message(s).find("youngs_modulus_Pa"), std::string::npos) << message(s);
+  s.material.youngs_modulus_Pa = 2300.0;
+  s.time_step_s = 0.0;
+  EXPECT_NE(message(s).find("time_step_s"), std::string::npos) << message(s);
+}
+
+TEST(FemModelTest, InvertedAndDegenerateTetsAreErrorsNamingBodyAndTet) {
+  TetrahedralMesh mesh = MakeBoxTetMesh({1, 1, 1}, {1, 1, 1});
+  std::swap(mesh.tets(4, 1), mesh.tets(4, 2));  // tet 4 now has negative volume
+  FemSettings s;
+  s.body_name = "gallbladder";
+  try {
+    BuildFemModel(mesh, s, {});
+    FAIL() << "expected an error";
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("gallbladder"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("4"), std::string::npos) << e.what();
+  }
+  TetrahedralMesh flat = MakeBoxTetMesh({1, 1, 1}, {1, 1, 1});
+  flat.vertices.col(2).setZero();  // every tet flattened to zero volume
+  EXPECT_THROW(BuildFemModel(flat, s, {}), MeshError);
+}
+
+TEST(FemModelTest, FixedNodeOutOfRangeIsAnError) {
+  FemSettings s;
+  s.body_name = "gallbladder";
+  try {
+    BuildFemModel(MakeBoxTetMesh({1, 1, 1}, {1, 1, 1}), s, {{8, {true, true, true}}});
+    FAIL() << "expected FemError";
+  } catch (const FemError& e) {
+    EXPECT_NE(std::string(e.what()).find("gallbladder: fixed node 8"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace vesica::physics
