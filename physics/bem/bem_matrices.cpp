@@ -43,8 +43,13 @@ class RowAssembler {
     for (int c = 0; c < 3; ++c) duffy_[c] = TriangleDuffy(c, options.duffy_order);
   }
 
-  // Fills rows 3i..3i+2 of H and G for collocation node i.
+  // Fills rows 3i..3i+2 of H and G for collocation node i. The row is accumulated in contiguous
+  // per-node 3x3 blocks (cache-resident) and copied once: scattering each element's blocks
+  // straight into the column-major matrices missed the cache on every column.
   void AssembleRow(int i, const Eigen::Vector3d& source, Eigen::MatrixXd& H, Eigen::MatrixXd& G) {
+    const std::size_t n = static_cast<std::size_t>(H.cols() / 3);
+    row_h_.assign(n, Eigen::Matrix3d::Zero());
+    row_g_.assign(n, Eigen::Matrix3d::Zero());
     for (const ElementGeometry& e : elements_) {
       influence_.Clear();
       const int corner = e.nodes[0] == i ? 0 : e.nodes[1] == i ? 1 : e.nodes[2] == i ? 2 : -1;
@@ -54,17 +59,20 @@ class RowAssembler {
         Regular(e, source, kIdentityCorners, 0);
       }
       for (int c = 0; c < 3; ++c) {
-        const int j = e.nodes[c];
-        H.block<3, 3>(3 * i, 3 * j) += influence_.h[c];
-        G.block<3, 3>(3 * i, 3 * j) += influence_.g[c];
+        const std::size_t j = static_cast<std::size_t>(e.nodes[c]);
+        row_h_[j] += influence_.h[c];
+        row_g_[j] += influence_.g[c];
       }
     }
     // Rigid translation u = const gives zero traction, so H times it vanishes row by row.
     Eigen::Matrix3d diagonal = Eigen::Matrix3d::Zero();
-    const Eigen::Index n = H.cols() / 3;
-    for (Eigen::Index j = 0; j < n; ++j)
-      if (j != i) diagonal -= H.block<3, 3>(3 * i, 3 * j);
-    H.block<3, 3>(3 * i, 3 * i) = diagonal;
+    for (std::size_t j = 0; j < n; ++j)
+      if (j != static_cast<std::size_t>(i)) diagonal -= row_h_[j];
+    row_h_[static_cast<std::size_t>(i)] = diagonal;
+    for (std::size_t j = 0; j < n; ++j) {
+      H.block<3, 3>(3 * i, 3 * static_cast<Eigen::Index>(j)) = row_h_[j];
+      G.block<3, 3>(3 * i, 3 * static_cast<Eigen::Index>(j)) = row_g_[j];
+    }
   }
 
  private:
@@ -124,6 +132,7 @@ class RowAssembler {
   BemQuadratureOptions options_;
   std::array<TriangleQuadrature, 3> duffy_;
   ElementInfluence influence_;
+  std::vector<Eigen::Matrix3d> row_h_, row_g_;
 };
 
 }  // namespace
