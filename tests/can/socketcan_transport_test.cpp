@@ -120,7 +120,8 @@ TEST_F(SocketCanTest, OwnFramesOnlyWhenAsked) {
   f.len = 0;
   ASSERT_EQ(a->send(f, a->now() + 100ms), SendStatus::Queued);
   TimedFrame rx;
-  EXPECT_TRUE(receive_within(*a, rx, 1s));
+  EXPECT_TRUE(receive_within(*a, rx, 1s));   // a asked for its own frames
+  EXPECT_TRUE(receive_within(*b, rx, 1s));   // loopback: other sockets see a's frame
   ASSERT_EQ(b->send(f, b->now() + 100ms), SendStatus::Queued);
   EXPECT_TRUE(receive_within(*a, rx, 1s));
   EXPECT_FALSE(receive_within(*b, rx, 50ms));  // b does not see its own
@@ -147,12 +148,12 @@ TEST_F(SocketCanTest, SaturatingTheQueueNeverCrashesAndReportsDrops) {
 TEST(SocketCanOpenTest, MissingInterfaceIsANamedError) {
   std::string why;
   std::string err;
-  auto t = SocketCanTransport::open(config_for("vesica-nonexistent0"), err);
+  auto t = SocketCanTransport::open(config_for("vsc-missing0"), err);
   EXPECT_EQ(t, nullptr);
   if (!SocketCanTransport::kernel_supports_can(why)) {
     EXPECT_NE(err.find("socket(AF_CAN"), std::string::npos) << err;
   } else {
-    EXPECT_NE(err.find("SIOCGIFINDEX vesica-nonexistent0"), std::string::npos) << err;
+    EXPECT_NE(err.find("SIOCGIFINDEX vsc-missing0"), std::string::npos) << err;
   }
 }
 
