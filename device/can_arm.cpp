@@ -55,6 +55,7 @@ DeviceStatus CanArm::Open() {
   link_ = LinkMonitor(config_.loss_timeout.count());
   state_sequence_.reset();
   negotiated_ = false;
+  watchdog_configured_ = config_.node_watchdog_timeout.count() == 0;
   node_enabled_ = false;
   node_fault_ = fp::FaultCode::None;
   enabled_since_ns_ = -1;
@@ -164,6 +165,10 @@ void CanArm::HandleFrame(const fp::TimedFrame& rx) {
   } else if (const auto* id = std::get_if<fp::Identity>(&m)) {
     negotiated_ = id->negotiated_minor != 0xFF;
   } else if (const auto* pr = std::get_if<fp::ParameterResponse>(&m)) {
+    if (pr->index == fp::param::kWatchdogTimeout_us && pr->op == fp::ParameterOp::Write) {
+      watchdog_configured_ = true;  // an abort is reported, not retried forever
+      if (pr->aborted) last_error_ = "node refused watchdog_timeout_us write, abort code " + std::to_string(pr->raw_value);
+    }
     // Newest fault-history entry, asked for when a node is seen in Fault without its EMCY.
     const std::uint32_t code = pr->raw_value & 0xFFu;
     if (pr->index == fp::param::kFaultHistory && !pr->aborted && code != 0 && code < fp::kFaultCodeCount &&
@@ -183,6 +188,11 @@ void CanArm::SendHandshake(fp::Nanoseconds now) {
   last_handshake_ns_ = Ns(now);
   if (!negotiated_) {
     Send(fp::Hello{config_.node_id, fp::kProtocolMajor, fp::kProtocolMinor}, now);
+  } else if (!watchdog_configured_ && !node_enabled_) {
+    Send(fp::ParameterRequest{config_.node_id, fp::ParameterOp::Write, fp::ParameterType::U32,
+                              fp::param::kWatchdogTimeout_us,
+                              static_cast<std::uint32_t>(config_.node_watchdog_timeout.count())},
+         now);
   } else if (node_state_ != fp::NodeState::Operational) {
     Send(fp::Nmt{fp::NmtCommand::Start, config_.node_id}, now);
   } else if (!node_enabled_) {
@@ -244,7 +254,8 @@ void CanArm::Tick() {
   if (phase_ == Phase::kRunning && !(node_enabled_ && node_state_ == fp::NodeState::Operational)) {
     phase_ = Phase::kConnecting;
   }
-  if (phase_ == Phase::kConnecting && node_enabled_ && node_state_ == fp::NodeState::Operational && negotiated_) {
+  if (phase_ == Phase::kConnecting && node_enabled_ && node_state_ == fp::NodeState::Operational && negotiated_ &&
+      watchdog_configured_) {
     phase_ = Phase::kRunning;
     enabled_since_ns_ = t;
   }
@@ -314,6 +325,11 @@ std::uint32_t CanArm::emergency_count() const { std::lock_guard lock(mu_); retur
 MotorCurrentCommand CanArm::last_command() const { std::lock_guard lock(mu_); return last_command_; }
 LatencyStatistics::Summary CanArm::loop_period() const { std::lock_guard lock(mu_); return loop_period_.Summarize(); }
 LatencyStatistics::Summary CanArm::round_trip() const { std::lock_guard lock(mu_); return round_trip_.Summarize(); }
+void CanArm::ResetStatistics() {
+  std::lock_guard lock(mu_);
+  loop_period_.Clear();
+  round_trip_.Clear();
+}
 std::uint32_t CanArm::link_loss_count() const { std::lock_guard lock(mu_); return link_.loss_count(); }
 std::uint32_t CanArm::link_restore_count() const { std::lock_guard lock(mu_); return link_.restore_count(); }
 fp::DecodeErrorCounters CanArm::decode_errors() const { std::lock_guard lock(mu_); return decode_errors_; }

@@ -21,6 +21,9 @@ struct CanArmConfig {
   std::chrono::nanoseconds loss_timeout{std::chrono::milliseconds(10)};  ///< no state this long: lost
   std::chrono::nanoseconds retry_period{std::chrono::milliseconds(20)};  ///< handshake resend
   std::chrono::nanoseconds send_deadline{std::chrono::microseconds(500)};
+  /// Written to the node's command watchdog before enabling; 0 keeps the node's setting (3 ms by
+  /// default). A host without real-time scheduling needs more (tens of ms) or the node will trip.
+  std::chrono::microseconds node_watchdog_timeout{0};
   double force_ramp_s = 0.05;          ///< force fades in over this after every enable, >= 0
   double velocity_filter_hz = 50.0;    ///< joint velocity estimate from positions, > 0
   std::string model_name = "Vesica 4-DOF spherical arm";
@@ -61,6 +64,7 @@ class CanArm final : public HapticDevice {
   MotorCurrentCommand last_command() const;
   LatencyStatistics::Summary loop_period() const;  ///< between Tick() calls
   LatencyStatistics::Summary round_trip() const;   ///< command/SYNC sent -> joint state back
+  void ResetStatistics();                          ///< start a new measurement window
   std::uint32_t link_loss_count() const;
   std::uint32_t link_restore_count() const;
   fp::DecodeErrorCounters decode_errors() const;
@@ -116,6 +120,7 @@ class CanArm final : public HapticDevice {
   std::uint8_t command_counter_ = 0;
   std::uint8_t control_counter_ = 0;
   bool reset_requested_ = false;
+  bool watchdog_configured_ = false;
   std::uint64_t send_failures_ = 0;
   std::string last_error_;
 };

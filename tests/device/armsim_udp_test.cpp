@@ -27,7 +27,12 @@ TEST(ArmsimUdpTest, SeparateProcessEmulatorWorksWithTheSameBridge) {
                             std::to_string(host->local_port()), "--duration-s", "2.5", "--report",
                             "--log-level", "warn"}));
 
-  CanArm arm(*host, CanArmConfig{});
+  // This shared build machine gives the 1 kHz thread no real-time guarantee (several ms gaps
+  // under load): a 50 ms node watchdog and 100 ms loss timeout instead of 3 ms / 10 ms.
+  CanArmConfig config;
+  config.node_watchdog_timeout = 50ms;
+  config.loss_timeout = 100ms;
+  CanArm arm(*host, config);
   ASSERT_EQ(arm.Open(), DeviceStatus::kConnecting);
   BridgeLoop loop(arm);
   loop.Start();
@@ -52,7 +57,9 @@ TEST(ArmsimUdpTest, SeparateProcessEmulatorWorksWithTheSameBridge) {
       << report;
   const Eigen::Vector3d felt(h[0], h[1], h[2]);
   EXPECT_LT((felt - f).norm(), 0.05 * f.norm()) << "felt " << felt.transpose() << " report: " << report;
-  EXPECT_NE(report.find("state=Operational"), std::string::npos) << report;
+  const auto period = arm.loop_period();
+  EXPECT_NE(report.find("state=operational"), std::string::npos)
+      << report << " host loop period p99 " << period.p99_ns << " ns, max " << period.max_ns << " ns";
 
   const auto rt = arm.round_trip();
   EXPECT_GT(rt.count, 1000u);        // about one answered command per millisecond

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "bridge_rig.h"
+#include "firmware_protocol/node/parameter_table.h"
 
 namespace vesica::device {
 namespace {
@@ -181,6 +182,23 @@ TEST(CanArmTest, WatchdogZeroesTorqueLatchesFaultAndNeedsReset) {
   EXPECT_EQ(rig.emulator->node().latched_fault(), fp::FaultCode::None);
   const Eigen::Vector3d felt = ToEigen(rig.emulator->plant().ForceOnHand());
   EXPECT_LT((felt - f).norm(), 0.05 * f.norm());
+}
+
+TEST(CanArmTest, ConfiguredNodeWatchdogIsWrittenBeforeEnable) {
+  CanArmConfig config;
+  config.node_watchdog_timeout = 20ms;
+  BridgeRig rig(config);
+  rig.arm->Open();
+  rig.Run(0.3);
+  ASSERT_EQ(rig.arm->Status(), DeviceStatus::kOk);
+  EXPECT_EQ(rig.emulator->node().parameters().u32(fp::param::kWatchdogTimeout_us), 20000u);
+  rig.arm->SetTipForce(Eigen::Vector3d(0.5, 0.0, 1.0));
+  rig.Run(0.3);
+  rig.host_running = false;
+  rig.Run(0.015);  // 15 ms silent: within the longer watchdog
+  EXPECT_EQ(rig.emulator->node().latched_fault(), fp::FaultCode::None);
+  rig.Run(0.010);
+  EXPECT_EQ(rig.emulator->node().latched_fault(), fp::FaultCode::CommandWatchdog);
 }
 
 TEST(CanArmTest, LossIsDetectedReportedAndReconnects) {
