@@ -32,8 +32,8 @@ double worst_case_load(bool fd) {
 TEST(BandwidthBudgetTest, ClassicCanWorstCaseLoadAtMostSixtyPercent) {
   const double load = worst_case_load(false);
   // 2 x (CurrentCommand + JointState) x 1 kHz x 135 us = 54 %, + AuxState/CurrentState 100 Hz
-  // (5.4 %) + heartbeat 10 Hz (0.14 %) = 59.5 %.
-  EXPECT_NEAR(load, 0.5954, 0.0005);
+  // (5.4 %) + 3-byte heartbeat 10 Hz (0.17 %) = 59.57 %.
+  EXPECT_NEAR(load, 0.5957, 0.0001);
   EXPECT_LE(load, 0.60);
 }
 
