@@ -3,11 +3,14 @@
 #include <chrono>
 #include <string>
 #include <thread>
+#include <variant>
 
 #include <benchmark/benchmark.h>
 
 #include "device/bridge_loop.h"
 #include "device/can_arm.h"
+#include "device/latency_statistics.h"
+#include "firmware_protocol/codec/codec.h"
 #include "tests/device/armsim_process.h"
 
 namespace vesica::device {
@@ -70,6 +73,54 @@ void BM_BridgeLoopOverUdp(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_BridgeLoopOverUdp)->Arg(10)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+
+// Wire round trip without the 1 kHz tick in the way: SYNC out, busy-wait for the arm's joint state
+// (UDP loopback both ways + vesica-armsim's receive and reply). The UDP transport stamps frames
+// when they are read, so the bridge loop above sees replies only at its next tick.
+void BM_SyncRoundTripOverUdp(benchmark::State& state) {
+  const std::uint16_t arm_port = testing::FreeUdpPort();
+  std::string error;
+  auto host = fp::UdpTransport::open({.local_port = 0, .remote_port = arm_port}, error);
+  testing::ArmsimProcess armsim;
+  if (!host || arm_port == 0 ||
+      !armsim.Start(VESICA_ARMSIM_PATH, {"--local-port", std::to_string(arm_port), "--remote-port",
+                                         std::to_string(host->local_port()), "--duration-s", "60", "--log-level",
+                                         "warn"})) {
+    state.SkipWithError("cannot start vesica-armsim on UDP");
+    return;
+  }
+  std::this_thread::sleep_for(300ms);  // let it boot
+  fp::TimedFrame rx;
+  while (host->receive(rx)) {
+  }
+  LatencyStatistics rtt(1 << 16);
+  std::uint8_t counter = 0;
+  std::uint64_t timeouts = 0;
+  for (auto _ : state) {
+    fp::CanFrame f;
+    fp::encode(fp::Sync{counter++}, f);
+    const auto t0 = std::chrono::steady_clock::now();
+    host->send(f, host->now() + 1ms);
+    bool answered = false;
+    while (!answered && std::chrono::steady_clock::now() - t0 < 50ms) {
+      host->wait(1ms);
+      while (host->receive(rx)) {
+        fp::Message m;
+        if (fp::decode(rx.frame, m) == fp::DecodeError::None && std::holds_alternative<fp::JointState>(m)) answered = true;
+      }
+    }
+    const auto dt = std::chrono::steady_clock::now() - t0;
+    if (!answered) ++timeouts;
+    rtt.Add(std::chrono::duration_cast<std::chrono::nanoseconds>(dt).count());
+    state.SetIterationTime(std::chrono::duration<double>(dt).count());
+  }
+  const auto s = rtt.Summarize();
+  state.counters["rtt_p50_us"] = s.p50_ns / 1e3;
+  state.counters["rtt_p99_us"] = s.p99_ns / 1e3;
+  state.counters["rtt_max_us"] = s.max_ns / 1e3;
+  state.counters["timeouts"] = static_cast<double>(timeouts);
+}
+BENCHMARK(BM_SyncRoundTripOverUdp)->Iterations(5000)->UseManualTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace vesica::device

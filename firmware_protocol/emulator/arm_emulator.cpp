@@ -26,9 +26,13 @@ void ArmEmulator::Reboot() {
 }
 
 void ArmEmulator::Flush(Nanoseconds now) {
+  // While catching up after a stall, tick time lags the transport's clock: the deadline counts
+  // from whichever is later, or every catch-up frame would be dropped as already late.
+  const Nanoseconds wall = transport_.now();
+  const Nanoseconds deadline = (wall > now ? wall : now) + config_.send_deadline;
   CanFrame f;
   while (node_->pop_tx(f)) {
-    if (transport_.send(f, now + config_.send_deadline) == SendStatus::Queued) {
+    if (transport_.send(f, deadline) == SendStatus::Queued) {
       ++frames_sent_;
     } else {
       ++frames_not_sent_;
