@@ -58,7 +58,6 @@ void CheckVector(const FemModel& m, const Eigen::VectorXd& x, const char* what) 
 void FemBody::SetExternalForces(const Eigen::VectorXd& f) {
   CheckVector(*model_, f, "external force");
   state_.external_force_N = f;
-  work_->acceleration_valid = false;
 }
 
 void FemBody::SetState(const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
