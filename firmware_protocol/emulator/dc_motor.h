@@ -19,13 +19,13 @@ struct DcMotorParameters {
 
 /// The motor's electrical state under its drive. The drive regulates the *measured* current to
 /// the setpoint, so a current-sensor offset appears as an error in the real current (which is
-/// why the firmware calibrates offsets).
+/// why the firmware calibrates offsets). A setpoint of exactly zero switches the bridge off.
 class DcMotor {
  public:
   explicit DcMotor(const DcMotorParameters& p) : p_(p) {}
 
-  /// Advances the current by dt toward setpoint - sensor_offset, bounded by what the supply can
-  /// push against the back-EMF at motor speed omega_motor_rad_s.
+  /// Advances the current by dt toward setpoint - sensor_offset (0 when the setpoint is 0: bridge
+  /// off), bounded by what the supply can push against the back-EMF at omega_motor_rad_s.
   void Step(double dt_s, double setpoint_A, double sensor_offset_A, double omega_motor_rad_s);
   void Reset() { current_A_ = 0.0; }
 

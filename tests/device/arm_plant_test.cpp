@@ -85,9 +85,15 @@ TEST(ArmPlantTest, SensorsShowOffsetsAndEncoderCounts) {
   plant.SetHandScript(HandScript(hold));
   plant.Advance(1.0);
   const PlantSensors s = plant.ReadSensors();
-  // Zero setpoint: the drive servoes the reading to zero, so the real current is -offset.
-  EXPECT_NEAR(s.current_A[0], 0.0, 1e-9);
-  EXPECT_NEAR(plant.motor_current_A()[0], -0.05, 1e-9);
+  // Zero setpoint: bridge off, no real current; the sensor reads its offset.
+  EXPECT_NEAR(s.current_A[0], 0.05, 1e-9);
+  EXPECT_NEAR(plant.motor_current_A()[0], 0.0, 1e-9);
+  // Driven: the loop servoes the reading, so the real current is off by the offset.
+  plant.SetCurrentSetpoints({0.2, 0.0, 0.0});
+  plant.Advance(0.002);
+  EXPECT_NEAR(plant.ReadSensors().current_A[0], 0.2, 1e-6);
+  EXPECT_NEAR(plant.motor_current_A()[0], 0.15, 1e-6);
+  plant.SetCurrentSetpoints({0.0, 0.0, 0.0});
   EXPECT_NEAR(s.roll_rad, 0.8, p.roll_sensor_lsb_rad);
   EXPECT_NEAR(s.jaw_rad, 0.25, p.jaw_sensor_lsb_rad);
   EXPECT_TRUE(s.pedal);

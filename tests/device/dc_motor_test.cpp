@@ -33,6 +33,12 @@ TEST(DcMotorTest, SensorOffsetShiftsTheRealCurrent) {
   EXPECT_NEAR(m.current_A(), 0.9, 1e-9);
 }
 
+TEST(DcMotorTest, ZeroSetpointSwitchesBridgeOff) {
+  DcMotor m(Motor());
+  for (int i = 0; i < 200; ++i) m.Step(1e-4, 0.0, 0.1, 0.0);
+  EXPECT_EQ(m.current_A(), 0.0);  // not -offset: nothing drives the winding
+}
+
 TEST(DcMotorTest, BackEmfLimitsCurrentAtSpeed) {
   DcMotor m(Motor());
   const double omega = 700.0;  // Ke w = 21 V leaves 3 V across 2 ohm: at most 1.5 A
