@@ -20,6 +20,7 @@
 
 #include "physics/bem/bem_model.h"
 #include "physics/bem/capacitance_solver.h"
+#include "physics/bem/dense_lu_solve.h"
 #include "physics/bem/ellipsoid_surface.h"
 
 namespace vesica::physics {
@@ -82,6 +83,7 @@ void BM_BemPrecompute(benchmark::State& state) {
     SetMemoryCounters(state, model);
     state.ResumeTiming();
   }
+  state.SetLabel(DenseLinearAlgebraBackend());
 }
 
 void BM_BemAssemble(benchmark::State& state) {
@@ -103,6 +105,7 @@ void BM_BemGreensSolve(benchmark::State& state) {
     Eigen::MatrixXd greens = ComputeGreensFunctions(std::move(copy), layout);
     benchmark::DoNotOptimize(greens.data());
   }
+  state.SetLabel(DenseLinearAlgebraBackend());
 }
 
 void BM_BemCacheLoad(benchmark::State& state) {

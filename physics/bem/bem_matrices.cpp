@@ -3,12 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
+#include <numbers>
 #include <thread>
 #include <vector>
 
 #include <Eigen/Geometry>
 
-#include "physics/bem/kelvin_solution.h"
 #include "physics/bem/triangle_quadrature.h"
 #include "physics/mesh/mesh_validation.h"
 
@@ -23,45 +24,35 @@ struct ElementGeometry {
   double size;  // longest edge
 };
 
-// Influence of one element on one collocation point: 3x3 blocks per element corner.
-struct ElementInfluence {
-  std::array<Eigen::Matrix3d, 3> h;
-  std::array<Eigen::Matrix3d, 3> g;
-  void Clear() {
-    for (int c = 0; c < 3; ++c) h[c].setZero(), g[c].setZero();
-  }
-};
-
+// Assembles one collocation row at a time into contiguous per-node 3x3 blocks (cache-resident),
+// copied into the column-major H and G once per row: scattering element blocks straight into the
+// big matrices missed the cache on every column.
 class RowAssembler {
  public:
   RowAssembler(const std::vector<ElementGeometry>& elements, const ElasticMaterial& material,
                const BemQuadratureOptions& options)
-      : elements_(elements),
-        mu_(LameMu(material)),
-        nu_(material.poisson_ratio),
-        options_(options) {
+      : elements_(elements), options_(options) {
+    const double mu = LameMu(material), nu = material.poisson_ratio;
+    u_scale_ = 1.0 / (16.0 * std::numbers::pi * mu * (1.0 - nu));
+    u_diagonal_ = 3.0 - 4.0 * nu;
+    t_scale_ = -1.0 / (8.0 * std::numbers::pi * (1.0 - nu));
+    t_a_ = 1.0 - 2.0 * nu;
     for (int c = 0; c < 3; ++c) duffy_[c] = TriangleDuffy(c, options.duffy_order);
   }
 
-  // Fills rows 3i..3i+2 of H and G for collocation node i. The row is accumulated in contiguous
-  // per-node 3x3 blocks (cache-resident) and copied once: scattering each element's blocks
-  // straight into the column-major matrices missed the cache on every column.
+  // Fills rows 3i..3i+2 of H and G for collocation node i.
   void AssembleRow(int i, const Eigen::Vector3d& source, Eigen::MatrixXd& H, Eigen::MatrixXd& G) {
     const std::size_t n = static_cast<std::size_t>(H.cols() / 3);
     row_h_.assign(n, Eigen::Matrix3d::Zero());
     row_g_.assign(n, Eigen::Matrix3d::Zero());
     for (const ElementGeometry& e : elements_) {
-      influence_.Clear();
       const int corner = e.nodes[0] == i ? 0 : e.nodes[1] == i ? 1 : e.nodes[2] == i ? 2 : -1;
+      // On the elements touching i, U* ~ 1/r and N_j T* ~ 1/r for j != i are integrable with
+      // Duffy's rule; whatever lands in H's own block (i, i) is overwritten below.
       if (corner >= 0) {
-        Accumulate(e, source, duffy_[corner], kIdentityCorners, /*skip_h_corner=*/corner, 1.0);
+        Accumulate(e, source, duffy_[corner], kIdentityCorners, 1.0);
       } else {
         Regular(e, source, kIdentityCorners, 0);
-      }
-      for (int c = 0; c < 3; ++c) {
-        const std::size_t j = static_cast<std::size_t>(e.nodes[c]);
-        row_h_[j] += influence_.h[c];
-        row_g_[j] += influence_.g[c];
       }
     }
     // Rigid translation u = const gives zero traction, so H times it vanishes row by row.
@@ -102,36 +93,63 @@ class RowAssembler {
     }
     const TriangleQuadrature& rule =
         distance > options_.far_ratio * size ? TriangleGauss3() : TriangleGauss7();
-    Accumulate(e, source, rule, sub, /*skip_h_corner=*/-1, scale * scale);
+    Accumulate(e, source, rule, sub, scale * scale);
   }
 
-  // Adds sum_k w_k area N_c(x_k) {T*, U*}(x_k - source) for corners c of element e; the rule lives
-  // on sub-triangle `sub` whose area is area_fraction of the element.
+  // Adds sum_k w_k area N_c(x_k) {T*, U*}(x_k - source) into the row blocks of the corners c of
+  // element e; the rule lives on sub-triangle `sub` whose area is area_fraction of the element.
+  // The Kelvin kernels (kelvin_solution.h) are written out here so that r, 1/r and r,i r,j are
+  // shared between U* and T* in this innermost loop.
   void Accumulate(const ElementGeometry& e, const Eigen::Vector3d& source,
-                  const TriangleQuadrature& rule, const Corners& sub, int skip_h_corner,
-                  double area_fraction) {
+                  const TriangleQuadrature& rule, const Corners& sub, double area_fraction) {
+    const double nx = e.normal.x(), ny = e.normal.y(), nz = e.normal.z();
+    double g_sum[3][6] = {};  // U* is symmetric: xx yy zz xy xz yz
+    double h_sum[3][9] = {};  // T*, row-major
     for (const TriangleQuadraturePoint& q : rule) {
-      std::array<double, 3> shape{};
+      double shape[3] = {0, 0, 0};
       for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) shape[c] += q.barycentric[a] * sub[a][c];
       const Eigen::Vector3d x =
           shape[0] * e.corners[0] + shape[1] * e.corners[1] + shape[2] * e.corners[2];
-      const Eigen::Vector3d r = x - source;
+      const double rx = x.x() - source.x(), ry = x.y() - source.y(), rz = x.z() - source.z();
+      const double inv_r = 1.0 / std::sqrt(rx * rx + ry * ry + rz * rz);
+      const double dx = rx * inv_r, dy = ry * inv_r, dz = rz * inv_r;
+      const double drdn = dx * nx + dy * ny + dz * nz;
       const double w = q.weight * e.area * area_fraction;
-      const Eigen::Matrix3d u_star = KelvinDisplacement(r, mu_, nu_);
-      const Eigen::Matrix3d t_star = KelvinTraction(r, e.normal, nu_);
+      // U* = u_scale / r [(3-4nu) I + d d^T]
+      const double wu = w * u_scale_ * inv_r;
+      const double u[6] = {wu * (u_diagonal_ + dx * dx), wu * (u_diagonal_ + dy * dy),
+                           wu * (u_diagonal_ + dz * dz), wu * dx * dy,
+                           wu * dx * dz,                 wu * dy * dz};
+      // T* = t_scale / r^2 [drdn ((1-2nu) I + 3 d d^T) - (1-2nu)(d n^T - n d^T)]
+      const double wt = w * t_scale_ * inv_r * inv_r;
+      const double p = drdn * t_a_, q3 = 3.0 * drdn;
+      const double cxy = t_a_ * (dx * ny - nx * dy), cxz = t_a_ * (dx * nz - nx * dz),
+                   cyz = t_a_ * (dy * nz - ny * dz);
+      const double t[9] = {wt * (q3 * dx * dx + p), wt * (q3 * dx * dy - cxy), wt * (q3 * dx * dz - cxz),
+                           wt * (q3 * dy * dx + cxy), wt * (q3 * dy * dy + p), wt * (q3 * dy * dz - cyz),
+                           wt * (q3 * dz * dx + cxz), wt * (q3 * dz * dy + cyz), wt * (q3 * dz * dz + p)};
       for (int c = 0; c < 3; ++c) {
-        influence_.g[c] += (w * shape[c]) * u_star;
-        if (c != skip_h_corner) influence_.h[c] += (w * shape[c]) * t_star;
+        for (int k = 0; k < 6; ++k) g_sum[c][k] += shape[c] * u[k];
+        for (int k = 0; k < 9; ++k) h_sum[c][k] += shape[c] * t[k];
       }
+    }
+    for (int c = 0; c < 3; ++c) {
+      Eigen::Matrix3d& g = row_g_[static_cast<std::size_t>(e.nodes[c])];
+      Eigen::Matrix3d& h = row_h_[static_cast<std::size_t>(e.nodes[c])];
+      g(0, 0) += g_sum[c][0], g(1, 1) += g_sum[c][1], g(2, 2) += g_sum[c][2];
+      g(0, 1) += g_sum[c][3], g(1, 0) += g_sum[c][3];
+      g(0, 2) += g_sum[c][4], g(2, 0) += g_sum[c][4];
+      g(1, 2) += g_sum[c][5], g(2, 1) += g_sum[c][5];
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) h(a, b) += h_sum[c][3 * a + b];
     }
   }
 
   const std::vector<ElementGeometry>& elements_;
-  double mu_, nu_;
   BemQuadratureOptions options_;
+  double u_scale_, u_diagonal_, t_scale_, t_a_;
   std::array<TriangleQuadrature, 3> duffy_;
-  ElementInfluence influence_;
   std::vector<Eigen::Matrix3d> row_h_, row_g_;
 };
 
@@ -156,7 +174,7 @@ BemMatrices AssembleBemMatrices(const TriangleMesh& surface, const ElasticMateri
   }
 
   const Eigen::Index dofs = 3 * surface.num_vertices();
-  BemMatrices m{Eigen::MatrixXd::Zero(dofs, dofs), Eigen::MatrixXd::Zero(dofs, dofs)};
+  BemMatrices m{Eigen::MatrixXd(dofs, dofs), Eigen::MatrixXd(dofs, dofs)};  // every row is written
   // Blocks of consecutive rows per task keep threads off each other's cache lines.
   constexpr int kRowsPerTask = 16;
   std::atomic<int> next_task{0};

@@ -16,8 +16,8 @@ struct BemMatrices {
 
 struct BemQuadratureOptions {
   int duffy_order = 6;          ///< Gauss-Legendre points per direction on singular elements
-  double near_ratio = 1.5;      ///< subdivide a (sub)triangle closer than this x its size
-  double far_ratio = 5.0;       ///< beyond this x size the 3-point rule suffices, else 7-point
+  double near_ratio = 1.0;      ///< subdivide a (sub)triangle closer than this x its size
+  double far_ratio = 3.0;       ///< beyond this x size the 3-point rule suffices, else 7-point
   int max_subdivision = 2;      ///< levels of 4-way subdivision for near-singular elements
 };
 

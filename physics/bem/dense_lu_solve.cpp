@@ -11,6 +11,8 @@ void dgetrs_(const char* trans, const int* n, const int* nrhs, const double* a, 
              const int* ipiv, double* b, const int* ldb, int* info, std::size_t trans_len);
 void dgecon_(const char* norm, const int* n, const double* a, const int* lda, const double* anorm,
              double* rcond, double* work, int* iwork, int* info, std::size_t norm_len);
+char* openblas_get_config();
+char* openblas_get_corename();
 }
 
 namespace vesica::physics {
@@ -40,6 +42,10 @@ double SolveDenseInPlace(Eigen::MatrixXd& A, Eigen::MatrixXd& B, const std::stri
   const char trans = 'N';
   dgetrs_(&trans, &n, &nrhs, A.data(), &n, pivots.data(), B.data(), &n, &info, 1);
   return rcond;
+}
+
+std::string DenseLinearAlgebraBackend() {
+  return std::string(openblas_get_config()) + " core " + openblas_get_corename();
 }
 
 }  // namespace vesica::physics

@@ -13,4 +13,9 @@ namespace vesica::physics {
 double SolveDenseInPlace(Eigen::MatrixXd& A, Eigen::MatrixXd& B, const std::string& what,
                          double min_rcond = 1e-13);
 
+/// The LAPACK backend and the CPU kernel it picked, e.g. "OpenBLAS 0.3.21 ... core SkylakeX".
+/// OpenBLAS 0.3.21 does not recognise some virtual CPUs and falls back to "Prescott" (SSE3, ~4x
+/// slower); set OPENBLAS_CORETYPE=SkylakeX (or Haswell) in the environment there.
+std::string DenseLinearAlgebraBackend();
+
 }  // namespace vesica::physics
