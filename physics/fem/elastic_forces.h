@@ -3,6 +3,8 @@
 // linear or corotational (f_e = R K_e (R^T x_e - X_e), tangent R K_e R^T: the usual
 // corotational linearisation that drops dR/dx).
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "physics/fem/fem_model.h"
@@ -11,9 +13,12 @@ namespace vesica::physics {
 
 /// u: 3n displacement (m). Writes the tangent values in pattern order (nnz, N/m; for a linear
 /// body a copy of the constant K, skipped when tangent_values is null) and the internal force
-/// (3n, N). Returns the elastic energy (J).
+/// (3n, N). Returns the elastic energy (J). rotation_cache (optional, per tet quaternion x y z w,
+/// identity on first use) warm-starts the corotational rotation from the last call: far cheaper
+/// than an SVD per element; elements near inversion still go through the SVD.
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u,
-                            Eigen::VectorXd* tangent_values, Eigen::VectorXd* internal_force_N);
+                            Eigen::VectorXd* tangent_values, Eigen::VectorXd* internal_force_N,
+                            std::vector<Eigen::Vector4d>* rotation_cache = nullptr);
 
 /// y = A x for a symmetric matrix stored in the pattern (read row-wise, gather form).
 void SymmetricPatternMultiply(const SparsePattern& pattern, const Eigen::VectorXd& values,

@@ -10,4 +10,10 @@ namespace vesica::physics {
 /// flipped, so R stays a proper rotation and the element is pushed back out of inversion.
 Eigen::Matrix3d RotationFromDeformationGradient(const Eigen::Matrix3d& F);
 
+/// The same rotation by the quaternion iteration of Mueller et al. (2016, "A robust method to
+/// extract the rotational part of deformations"), warm started from q = (x, y, z, w), which is
+/// updated in place. A few flops per iteration instead of an SVD; use it where det F is well
+/// above zero (the SVD handles inversion).
+Eigen::Matrix3d RotationByQuaternionIteration(const Eigen::Matrix3d& F, Eigen::Vector4d& q, int max_iterations);
+
 }  // namespace vesica::physics

@@ -19,6 +19,7 @@ struct FemBody::Workspace {
   bool system_assembled = false;   // S exists (for the last step, or the current state)
   bool acceleration_valid = false;
   Eigen::VectorXd last_increment;  // PCG warm start
+  std::vector<Eigen::Vector4d> rotations;  // corotational warm start, per tet
   BlockJacobiPreconditioner jacobi;
   CholmodSolver cholmod;
   bool factor_matches_system = false;
@@ -87,7 +88,7 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
   const bool linear = s.element_model == ElementModel::kLinear;
   // A linear body's K never changes: copy it once, then only f = K u is needed.
   w.elastic_energy = ComputeElasticForces(m, u, (linear && w.system_assembled) ? nullptr : &w.tangent_values,
-                                          &w.internal_force);
+                                          &w.internal_force, &w.rotations);
   if (linear && w.system_assembled) return;
   const SystemCoefficients c = IntegratorCoefficients(s);
   const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;

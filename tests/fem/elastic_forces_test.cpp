@@ -84,6 +84,34 @@ TEST(ElementRotationTest, RecoversRotationFromRotatedStretch) {
   EXPECT_LT((RotationFromDeformationGradient(r * stretch) - r).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+TEST(ElementRotationTest, QuaternionIterationAgreesWithSvd) {
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(1.2, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  Eigen::Matrix3d stretch;
+  stretch << 1.2, 0.1, 0.0, 0.1, 0.9, 0.05, 0.0, 0.05, 1.1;  // symmetric positive definite
+  const Eigen::Matrix3d f = r * stretch;
+  Eigen::Vector4d q(0, 0, 0, 1);  // cold start from identity
+  const Eigen::Matrix3d cold = RotationByQuaternionIteration(f, q, 100);
+  EXPECT_LT((cold - RotationFromDeformationGradient(f)).cwiseAbs().maxCoeff(), 1e-9);
+  // Warm start after a small further rotation converges within the body's 30-iteration cap.
+  const Eigen::Matrix3d f2 = Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitX()).toRotationMatrix() * f;
+  EXPECT_LT((RotationByQuaternionIteration(f2, q, 30) - RotationFromDeformationGradient(f2)).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+TEST(ElasticForcesTest, WarmStartedRotationsGiveTheSameForces) {
+  const FemModel m = Block(ElementModel::kCorotational);
+  std::vector<Eigen::Vector4d> cache;
+  Eigen::VectorXd f_svd, f_cached, k_svd, k_cached;
+  for (double angle : {0.3, 0.35, 0.4}) {  // a body turning and stretching over three calls
+    Eigen::VectorXd u = RigidRotation(m, {0, 1, 1}, angle, {0, 0, 0});
+    for (int i = 0; i < m.num_nodes(); ++i) u[3 * i] += 0.05 * m.rest_mesh.vertices(i, 0) * angle;
+    const double e_svd = ComputeElasticForces(m, u, &k_svd, &f_svd);
+    const double e_cached = ComputeElasticForces(m, u, &k_cached, &f_cached, &cache);
+    EXPECT_NEAR(e_cached, e_svd, 1e-9 * e_svd);
+    EXPECT_LT((f_cached - f_svd).cwiseAbs().maxCoeff(), 1e-8 * f_svd.cwiseAbs().maxCoeff());
+    EXPECT_LT((k_cached - k_svd).cwiseAbs().maxCoeff(), 1e-8 * k_svd.cwiseAbs().maxCoeff());
+  }
+}
+
 TEST(ElementRotationTest, InvertedElementStillGivesAProperRotation) {
   const Eigen::Matrix3d r = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const Eigen::Matrix3d inverted = r * Eigen::Vector3d(1.0, 1.0, -0.2).asDiagonal();
