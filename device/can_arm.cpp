@@ -229,8 +229,12 @@ void CanArm::Tick() {
   }
 
   if (link_.Poll(t) == LinkMonitor::Event::kLost) {
-    // Counters restart when the node comes back (it may have rebooted meanwhile).
+    // The node may reboot while away: its counters, version negotiation and settings restart,
+    // so the handshake does too when it comes back.
     state_sequence_.reset();
+    negotiated_ = false;
+    watchdog_configured_ = config_.node_watchdog_timeout.count() == 0;
+    node_enabled_ = false;
     request_sent_ns_ = -1;
     last_state_ns_ = -1;
     qd_.setZero();

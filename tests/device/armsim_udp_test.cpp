@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -65,6 +66,44 @@ TEST(ArmsimUdpTest, SeparateProcessEmulatorWorksWithTheSameBridge) {
   EXPECT_GT(rt.count, 1000u);        // about one answered command per millisecond
   EXPECT_LT(rt.p50_ns, 5e6);         // loopback UDP + a 100 us node tick
   EXPECT_EQ(arm.decode_errors().total(), 0u);
+}
+
+// The arm process dies mid-session (vanished device): the bridge reports the loss and keeps
+// running; a new arm process on the same port is picked up again through a fresh handshake.
+TEST(ArmsimUdpTest, VanishedArmProcessIsReportedAndReplacementReconnects) {
+  const std::uint16_t arm_port = testing::FreeUdpPort();
+  std::string error;
+  auto host = fp::UdpTransport::open({.local_port = 0, .remote_port = arm_port}, error);
+  ASSERT_TRUE(host) << error;
+  const std::vector<std::string> args{"--local-port", std::to_string(arm_port), "--remote-port",
+                                      std::to_string(host->local_port()), "--log-level", "warn"};
+  CanArmConfig config;
+  config.node_watchdog_timeout = 50ms;
+  config.loss_timeout = 100ms;
+  CanArm arm(*host, config);
+  arm.Open();
+  BridgeLoop loop(arm);
+  loop.Start();
+  auto wait_for = [&](DeviceStatus want, int max_ms) {
+    for (int i = 0; i < max_ms / 10 && arm.Status() != want; ++i) std::this_thread::sleep_for(10ms);
+    return arm.Status();
+  };
+  {
+    testing::ArmsimProcess first;
+    ASSERT_TRUE(first.Start(VESICA_ARMSIM_PATH, args));
+    ASSERT_EQ(wait_for(DeviceStatus::kOk, 3000), DeviceStatus::kOk) << arm.last_error();
+    arm.SetTipForce(Eigen::Vector3d(0.3, 0.0, 0.5));
+    std::this_thread::sleep_for(200ms);
+  }  // SIGTERM: the arm process is gone
+  EXPECT_EQ(wait_for(DeviceStatus::kLinkLost, 2000), DeviceStatus::kLinkLost);
+  EXPECT_EQ(arm.link_loss_count(), 1u);
+  EXPECT_EQ(arm.last_command().current_A, Eigen::Vector3d::Zero());
+
+  testing::ArmsimProcess second;
+  ASSERT_TRUE(second.Start(VESICA_ARMSIM_PATH, args));
+  EXPECT_EQ(wait_for(DeviceStatus::kOk, 3000), DeviceStatus::kOk) << ToString(arm.Status()) << " " << arm.last_error();
+  EXPECT_EQ(arm.link_restore_count(), 1u);
+  loop.Stop();
 }
 
 }  // namespace
