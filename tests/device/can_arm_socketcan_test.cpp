@@ -38,15 +38,18 @@ TEST(CanArmSocketCanTest, BridgeAndEmulatorOverVcan) {
   const emu::Joint4 q0{0.1, 0.05, 0.0, 0.12};
   emu::ArmEmulator::Config ec;
   ec.board.park_position = {0.1f, 0.05f, 0.12f};
+  ec.tick_period = 200us;  // 5 kHz: less work for a slow virtual machine
   emu::ArmEmulator emulator(*arm_bus, emu::ArmPlantParameters::Nominal(), q0, ec);
   emu::HandTarget hold;
   hold.p_T = emu::TipPosition(q0);
   emulator.plant().SetHandScript(emu::HandScript(hold));
   std::atomic<bool> run{true};
+  std::atomic<double> plant_time_s{0.0};  // user-mode Linux can run slower than real time
   std::thread arm_thread([&] {
     while (run.load()) {
       arm_bus->wait(100us);
       emulator.RunUntil(arm_bus->now());
+      plant_time_s.store(emulator.plant().time_s());
     }
   });
 
@@ -64,7 +67,9 @@ TEST(CanArmSocketCanTest, BridgeAndEmulatorOverVcan) {
   }
   const Eigen::Vector3d f(-0.6, 0.4, 1.0);
   arm.SetTipForce(f);
-  std::this_thread::sleep_for(1500ms);
+  // 1.5 s of emulated arm time to settle (wall time may be longer under user-mode Linux).
+  const double settle_until = plant_time_s.load() + 1.5;
+  for (int i = 0; i < 2000 && plant_time_s.load() < settle_until; ++i) std::this_thread::sleep_for(10ms);
   const DeviceStatus end_status = arm.Status();
   run.store(false);  // stop the arm first: its plant state is read below with the force still on
   arm_thread.join();
