@@ -16,6 +16,14 @@ ArmEmulator::ArmEmulator(Transport& transport, const ArmPlantParameters& params,
       node_(std::make_unique<Node<EmulatedBoard>>(*board_, config.serial)),
       origin_(transport.now()),
       next_tick_(origin_) {
+  if (config.node_id != 1) {
+    // Factory programming: a parameter image carrying the node id.
+    ParameterStore store;
+    store.write(param::kNodeId, ParameterType::U32, config.node_id);
+    std::uint8_t image[ParameterStore::kImageSize];
+    const std::size_t n = store.serialize(image, sizeof image);
+    board_->storage_write(image, n);
+  }
   node_->boot(Micros(next_tick_));
   Flush(next_tick_);
 }

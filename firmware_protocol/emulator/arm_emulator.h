@@ -18,6 +18,9 @@ class ArmEmulator {
  public:
   struct Config {
     std::uint32_t serial = 0x5E51CA01;
+    /// Node id written to a blank emulated flash before the first boot (the node reads its id
+    /// from stored parameters); 1..127.
+    std::uint8_t node_id = 1;
     Nanoseconds tick_period{std::chrono::microseconds(100)};  ///< node + plant step, 10 kHz
     Nanoseconds send_deadline{std::chrono::milliseconds(1)};  ///< per frame handed to the bus
     EmulatedBoard::Config board;

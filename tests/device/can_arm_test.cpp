@@ -231,6 +231,51 @@ TEST(CanArmTest, LossIsDetectedReportedAndReconnects) {
   EXPECT_GT(MaxAbs(rig.emulator->plant().motor_current_A()), 0.05);
 }
 
+// Two arms (node ids 1 and 2) and two bridges on one classic 1 Mbit/s bus at 1 kHz: both render
+// their own force, and the measured bus load stays within the 60% budget.
+TEST(CanArmTest, TwoArmsShareOneBusWithinLoadBudget) {
+  BridgeRig rig;  // arm 1 on "arm", host 1 on "host"
+  fp::VirtualBusEndpoint& arm2_ep = rig.bus.attach("arm2");
+  fp::VirtualBusEndpoint& host2_ep = rig.bus.attach("host2");
+  fp::emulator::ArmEmulator::Config ec;
+  ec.node_id = 2;
+  const fp::emulator::Joint4 q2{-0.3, 0.2, 0.0, 0.1};
+  ec.board.park_position = {-0.3f, 0.2f, 0.1f};
+  fp::emulator::ArmEmulator arm2(arm2_ep, fp::emulator::ArmPlantParameters::Nominal(), q2, ec);
+  fp::emulator::HandTarget hold2;
+  hold2.p_T = fp::emulator::TipPosition(q2);
+  arm2.plant().SetHandScript(fp::emulator::HandScript(hold2));
+  CanArmConfig c2;
+  c2.node_id = 2;
+  CanArm host2(host2_ep, c2);
+  ASSERT_EQ(arm2.node().node_id(), 2);
+
+  rig.arm->Open();
+  host2.Open();
+  const Eigen::Vector3d f1(1.0, 0.0, 1.0), f2(-0.5, 0.8, 0.6);
+  rig.arm->SetTipForce(f1);
+  host2.SetTipForce(f2);
+  auto run = [&](double s) {
+    rig.Run(s, [&] {
+      arm2.RunUntil(rig.clock.now());
+      host2.Tick();
+    });
+  };
+  run(0.5);
+  rig.bus.reset_load();
+  run(1.5);
+  const double load = rig.bus.load();
+  RecordProperty("bus_load_two_arms", std::to_string(load));
+  ASSERT_EQ(rig.arm->Status(), DeviceStatus::kOk);
+  ASSERT_EQ(host2.Status(), DeviceStatus::kOk);
+  EXPECT_LT((ToEigen(rig.emulator->plant().ForceOnHand()) - f1).norm(), 0.05 * f1.norm());
+  EXPECT_LT((ToEigen(arm2.plant().ForceOnHand()) - f2).norm(), 0.05 * f2.norm());
+  EXPECT_LT(load, 0.60);
+  EXPECT_GT(load, 0.40);  // 4 frames of ~120 bits per ms plus 100 Hz traffic: about half the bus
+  EXPECT_EQ(rig.arm->decode_errors().total(), 0u);
+  EXPECT_EQ(host2.decode_errors().total(), 0u);
+}
+
 TEST(CanArmTest, RoundTripAndPeriodStatisticsOnVirtualBus) {
   BridgeRig rig;
   rig.arm->Open();
