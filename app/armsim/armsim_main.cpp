@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   vesica::app::ArmsimUdpOptions udp;
   double duration_s = 0.0;
   int tick_us = 100;
+  int node_id = 1;
   double hand_x_mm = 0.0, hand_y_mm = 0.0, depth_mm = 120.0;
   std::string log_level = "info";
   bool report = false;
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
   app.add_option("--remote-port", udp.remote_port, "host bridge UDP port")->check(CLI::Range(1, 65535));
   app.add_option("--duration-s", duration_s, "stop after this many seconds (0: until SIGINT/SIGTERM)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--node-id", node_id, "CAN node id of this arm")->check(CLI::Range(1, 127));
   app.add_option("--tick-us", tick_us, "node and plant step, microseconds")->check(CLI::Range(20, 1000));
   app.add_option("--hand-x-mm", hand_x_mm, "hand target, trocar frame x, mm");
   app.add_option("--hand-y-mm", hand_y_mm, "hand target, trocar frame y, mm");
@@ -58,6 +60,7 @@ int main(int argc, char** argv) {
   const emu::Joint4 q0{0.0, 0.0, 0.0, depth};
   emu::ArmEmulator::Config config;
   config.tick_period = std::chrono::microseconds(tick_us);
+  config.node_id = static_cast<std::uint8_t>(node_id);
   config.board.park_position = {0.0f, 0.0f, static_cast<float>(depth)};
   emu::ArmEmulator arm(*transport, emu::ArmPlantParameters::Nominal(), q0, config);
   emu::HandTarget hold;
