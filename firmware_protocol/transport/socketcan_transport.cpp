@@ -1,6 +1,8 @@
 // SocketCAN CAN_RAW transport.
 #include "firmware_protocol/transport/socketcan_transport.h"
 
+#include "firmware_protocol/transport/socketcan_error_frame.h"
+
 #include <cerrno>
 #include <cstring>
 #include <ctime>
@@ -153,19 +155,10 @@ SendStatus SocketCanTransport::send(const CanFrame& frame, Nanoseconds deadline)
 
 void SocketCanTransport::handle_error_frame(const std::uint8_t* data, std::uint32_t id, Nanoseconds t) {
   ++stats_.error_frames;
-  events_.push_back({BusEvent::Kind::ErrorFrame, state_, id & CAN_ERR_MASK, t});
-  if (id & CAN_ERR_BUSOFF) {
-    set_state(BusState::BusOff, t);
-  } else if (id & CAN_ERR_RESTARTED) {
-    set_state(BusState::ErrorActive, t);
-  } else if (id & CAN_ERR_CRTL) {
-    const std::uint8_t c = data[1];
-    if (c & (CAN_ERR_CRTL_RX_PASSIVE | CAN_ERR_CRTL_TX_PASSIVE)) set_state(BusState::ErrorPassive, t);
-    else if (c & (CAN_ERR_CRTL_RX_WARNING | CAN_ERR_CRTL_TX_WARNING)) set_state(BusState::ErrorWarning, t);
-    else if (c & CAN_ERR_CRTL_ACTIVE) set_state(BusState::ErrorActive, t);
-    if (c & (CAN_ERR_CRTL_RX_OVERFLOW | CAN_ERR_CRTL_TX_OVERFLOW))
-      events_.push_back({BusEvent::Kind::RxOverflow, state_, c, t});
-  }
+  const ErrorFrameEffect e = interpret_error_frame(id, data);
+  events_.push_back({BusEvent::Kind::ErrorFrame, state_, e.error_class, t});
+  if (e.has_state) set_state(e.state, t);
+  if (e.overflow) events_.push_back({BusEvent::Kind::RxOverflow, state_, data[1], t});
 }
 
 void SocketCanTransport::drain_socket() {
