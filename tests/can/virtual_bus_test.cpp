@@ -155,6 +155,27 @@ TEST(VirtualBusTest, UnpluggedEndpointReportsDeviceLostAndRefusesToSend) {
   EXPECT_EQ(b.state(), BusState::ErrorActive);
 }
 
+TEST(VirtualBusTest, CanFdFrameUsesTheDataBitRateAndInvalidLengthsAreRefused) {
+  VirtualClock clock;
+  VirtualBus bus(clock);
+  auto& a = bus.attach("a");
+  auto& b = bus.attach("b");
+  CanFrame f = frame(0x181, 0);
+  f.flags = CanFrame::kFdFrame | CanFrame::kBitRateSwitch;
+  f.len = 64;
+  ASSERT_EQ(a.send(f, 1ms), SendStatus::Queued);
+  bus.advance(1ms);
+  TimedFrame rx;
+  ASSERT_TRUE(b.receive(rx));
+  EXPECT_EQ(rx.timestamp, Nanoseconds{static_cast<std::int64_t>(fd_worst_case_duration_ns(64, BitRates{}))});
+  EXPECT_LT(rx.timestamp, 200us);  // 64 bytes at 5 Mbit/s: far below 8 classic frames (1080 us)
+  f.len = 9;  // not an FD length
+  EXPECT_EQ(a.send(f, clock.now() + 1ms), SendStatus::Invalid);
+  CanFrame classic = frame(0x181, 8);
+  classic.len = 12;
+  EXPECT_EQ(a.send(classic, clock.now() + 1ms), SendStatus::Invalid);
+}
+
 TEST(VirtualBusTest, ReceiveQueueOverflowIsCounted) {
   VirtualClock clock;
   VirtualBus::Config cfg;
