@@ -7,6 +7,8 @@
 //   contact tractions   t_c = C^{-1} (u_c - u_ref,c)                     O(s^2)
 //   all unknowns        Y   = Y_ref + Xi[:, contact] t_c                  O(n s)
 // with Y_ref the response to the applied (spring) tractions. Reads the model; never changes it.
+// The const queries use internal scratch buffers (no allocation per call): one thread at a time
+// per solver; give the haptic thread its own solver on the same model.
 
 #include <Eigen/Core>
 #include <Eigen/LU>
