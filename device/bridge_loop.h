@@ -3,6 +3,8 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <mutex>
+#include <string>
 #include <thread>
 
 #include "device/can_arm.h"
@@ -22,6 +24,11 @@ class BridgeLoop {
 
   /// after_tick (optional) runs on the loop thread after every tick, e.g. to set the next force.
   void Start(std::function<void()> after_tick = {});
+  /// Ask for SCHED_FIFO at this priority (1..99) for the loop thread before Start(); 0 = normal
+  /// scheduling. Refusal (no CAP_SYS_NICE) leaves the loop running normally; see realtime_error().
+  void set_realtime_priority(int priority) { realtime_priority_ = priority; }
+  /// Empty if the requested real-time scheduling took effect (or none was asked for).
+  std::string realtime_error() const;
   void Stop();
   bool running() const { return running_.load(); }
   std::uint64_t ticks() const { return ticks_.load(); }
@@ -34,6 +41,9 @@ class BridgeLoop {
   std::atomic<std::uint64_t> ticks_{0};
   std::atomic<std::uint64_t> overruns_{0};
   std::thread thread_;
+  int realtime_priority_ = 0;
+  mutable std::mutex error_mu_;
+  std::string realtime_error_;
 };
 
 }  // namespace vesica::device

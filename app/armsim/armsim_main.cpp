@@ -1,10 +1,13 @@
 // vesica-armsim: one emulated 4-DOF arm (plant + reference firmware node) in its own process,
 // talking CAN over UDP (cannelloni packet format) in real time, so the host bridge, candump-style
 // tools and real CAN/UDP gateways can connect to it like to an arm on can0.
+#include <sched.h>
+
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <string>
 
@@ -28,6 +31,7 @@ int main(int argc, char** argv) {
   double duration_s = 0.0;
   int tick_us = 100;
   int node_id = 1;
+  int realtime_priority = 0;
   double hand_x_mm = 0.0, hand_y_mm = 0.0, depth_mm = 120.0;
   std::string log_level = "info";
   bool report = false;
@@ -42,6 +46,8 @@ int main(int argc, char** argv) {
   app.add_option("--hand-y-mm", hand_y_mm, "hand target, trocar frame y, mm");
   app.add_option("--depth-mm", depth_mm, "park insertion depth and hand target depth, mm")
       ->check(CLI::Range(20.0, 250.0));
+  app.add_option("--realtime-priority", realtime_priority, "SCHED_FIFO priority, 0: normal scheduling")
+      ->check(CLI::Range(0, 99));
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error");
   app.add_flag("--report", report, "print the final plant state as one key=value line on stdout");
   CLI11_PARSE(app, argc, argv);
@@ -52,6 +58,13 @@ int main(int argc, char** argv) {
   if (!vesica::app::OpenArmsimUdp(udp, &transport, &error)) {
     spdlog::error("vesica-armsim: {}", error);
     return 2;
+  }
+  if (realtime_priority > 0) {
+    sched_param param{};
+    param.sched_priority = realtime_priority;
+    if (sched_setscheduler(0, SCHED_FIFO, &param) != 0)
+      spdlog::warn("vesica-armsim: SCHED_FIFO priority {} refused ({}), running with normal scheduling",
+                   realtime_priority, std::strerror(errno));
   }
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);

@@ -28,10 +28,12 @@ void BM_BridgeLoopOverUdp(benchmark::State& state) {
       state.SkipWithError(("UDP: " + error).c_str());
       return;
     }
+    const int realtime_priority = static_cast<int>(state.range(1));
     testing::ArmsimProcess armsim;
     if (!armsim.Start(VESICA_ARMSIM_PATH, {"--local-port", std::to_string(arm_port), "--remote-port",
                                            std::to_string(host->local_port()), "--duration-s",
-                                           std::to_string(seconds + 3), "--log-level", "warn"})) {
+                                           std::to_string(seconds + 3), "--log-level", "warn",
+                                           "--realtime-priority", std::to_string(realtime_priority)})) {
       state.SkipWithError("cannot start vesica-armsim");
       return;
     }
@@ -41,6 +43,7 @@ void BM_BridgeLoopOverUdp(benchmark::State& state) {
     CanArm arm(*host, config);
     arm.Open();
     BridgeLoop loop(arm);
+    loop.set_realtime_priority(realtime_priority);
     loop.Start();
     for (int i = 0; i < 200 && arm.Status() != DeviceStatus::kOk; ++i) std::this_thread::sleep_for(10ms);
     if (arm.Status() != DeviceStatus::kOk) {
@@ -70,9 +73,11 @@ void BM_BridgeLoopOverUdp(benchmark::State& state) {
     state.counters["answered"] = static_cast<double>(rtt.count);
     state.counters["overruns"] = static_cast<double>(loop.overruns() - overruns_before);
     state.counters["stayed_ok"] = ok ? 1 : 0;
+    state.counters["sched_fifo"] = realtime_priority > 0 && loop.realtime_error().empty() ? 1 : 0;
   }
 }
-BENCHMARK(BM_BridgeLoopOverUdp)->Arg(10)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+// Args: seconds, SCHED_FIFO priority of the loop thread (0: normal scheduling).
+BENCHMARK(BM_BridgeLoopOverUdp)->Args({10, 0})->Args({10, 80})->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 // Wire round trip without the 1 kHz tick in the way: SYNC out, busy-wait for the arm's joint state
 // (UDP loopback both ways + vesica-armsim's receive and reply). The UDP transport stamps frames
