@@ -34,7 +34,7 @@ struct AnatomyOptions {
   double gallbladder_voxel_m = 0.0007;  ///< fine enough for the 3 mm cystic duct
   std::vector<GallbladderResolution> gallbladder_resolutions{{300, 200}, {1000, 550}, {3000, 1300}};
   /// Tangential relaxation rounds of each gallbladder surface before TetGen (triangle shape).
-  int gallbladder_relaxation_iterations = 10;
+  int gallbladder_relaxation_iterations = 30;
   TetQualityRequest tet_quality;
   double wall_voxel_m = 0.004;
   int wall_vertices = 800;

@@ -63,8 +63,8 @@ namespace {
 
 std::string QualitySwitches(const TetQualityRequest& q, double max_volume_m3) {
   char buffer[128];
-  std::snprintf(buffer, sizeof buffer, "pq%.3g/%.3ga%.4e%sQ", q.max_radius_edge, q.min_dihedral_deg,
-                max_volume_m3, q.keep_surface ? "Y" : "");
+  std::snprintf(buffer, sizeof buffer, "pq%.3g/%.3ga%.4eO%d/7%sQ", q.max_radius_edge, q.min_dihedral_deg,
+                max_volume_m3, q.optimisation_level, q.keep_surface ? "Y" : "");
   return buffer;
 }
 
