@@ -32,9 +32,10 @@ struct AnatomyOptions {
   double liver_voxel_m = 0.0015;        ///< marching-cubes sampling of the liver
   int liver_vertices = 1000;            ///< after decimation
   double gallbladder_voxel_m = 0.0007;  ///< fine enough for the 3 mm cystic duct
-  std::vector<GallbladderResolution> gallbladder_resolutions{{300, 200}, {1000, 550}, {3000, 1300}};
+  std::vector<GallbladderResolution> gallbladder_resolutions{
+      {300, 200}, {600, 370}, {1000, 550}, {1600, 800}, {3000, 1300}};
   /// Tangential relaxation rounds of each gallbladder surface before TetGen (triangle shape).
-  int gallbladder_relaxation_iterations = 30;
+  int gallbladder_relaxation_iterations = 20;
   TetQualityRequest tet_quality;
   double wall_voxel_m = 0.004;
   int wall_vertices = 800;

@@ -33,7 +33,7 @@ TEST(AnatomyReproducibilityTest, GeneratorReproducesTheCommittedFiles) {
   EXPECT_NEAR(physics::EnclosedVolume(liver), physics::EnclosedVolume(committed_liver), 1e-12);
   EXPECT_EQ(liver.vertex_labels, committed_liver.vertex_labels);
 
-  for (int nodes : {300, 1000, 3000}) {
+  for (int nodes : {300, 600, 1000, 1600, 3000}) {
     const physics::TetrahedralMesh mesh = ReadTetrahedralMesh(dir / (GallbladderStem(nodes) + ".vtu"));
     const physics::TetrahedralMesh committed = LoadGallbladder(nodes);
     EXPECT_EQ(mesh.num_vertices(), committed.num_vertices()) << nodes;
