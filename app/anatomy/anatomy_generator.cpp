@@ -105,14 +105,27 @@ void WriteAnatomy(const AnatomyAssets& assets, const std::filesystem::path& dire
 std::string SummariseAnatomy(const AnatomyAssets& assets) {
   std::string text;
   char line[256];
+  const TriangleMesh& liver = assets.liver;
   auto count_label = [&](int bit) {
     int n = 0;
-    for (int i = 0; i < assets.liver.vertex_labels.size(); ++i) n += (assets.liver.vertex_labels[i] & bit) ? 1 : 0;
+    for (int i = 0; i < liver.vertex_labels.size(); ++i) n += (liver.vertex_labels[i] & bit) ? 1 : 0;
     return n;
   };
-  std::snprintf(line, sizeof line, "liver: %d vertices, %d triangles, volume %.1f cm^3, fixed %d, bed %d vertices\n",
-                assets.liver.num_vertices(), assets.liver.num_triangles(), physics::EnclosedVolume(assets.liver) * 1e6,
-                count_label(physics::kLabelFixed), count_label(physics::kLabelGallbladderBed));
+  auto label_area = [&](int bit) {  // triangles with all three corners labelled
+    double area = 0;
+    for (int f = 0; f < liver.num_triangles(); ++f) {
+      bool all = true;
+      for (int k = 0; k < 3; ++k) all = all && (liver.vertex_labels[liver.triangles(f, k)] & bit);
+      if (all) area += physics::TriangleArea(liver, f);
+    }
+    return area;
+  };
+  std::snprintf(line, sizeof line,
+                "liver: %d vertices, %d triangles, volume %.1f cm^3, fixed %d vertices (%.1f cm^2), "
+                "bed %d vertices (%.1f cm^2)\n",
+                liver.num_vertices(), liver.num_triangles(), physics::EnclosedVolume(liver) * 1e6,
+                count_label(physics::kLabelFixed), label_area(physics::kLabelFixed) * 1e4,
+                count_label(physics::kLabelGallbladderBed), label_area(physics::kLabelGallbladderBed) * 1e4);
   text += line;
   for (const GallbladderMesh& g : assets.gallbladders) {
     std::snprintf(line, sizeof line,
