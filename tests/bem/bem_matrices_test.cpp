@@ -7,6 +7,8 @@
 #include <Eigen/Eigenvalues>
 
 #include "physics/bem/ellipsoid_surface.h"
+#include "physics/bem/kelvin_solution.h"
+#include "physics/bem/triangle_quadrature.h"
 #include "physics/mesh/mesh_validation.h"
 #include "physics/mesh/primitives.h"
 
@@ -72,6 +74,50 @@ TEST(BemMatricesTest, LinearFieldResidualFallsUnderRefinement) {
     EXPECT_GT(rate, 1.5) << "residual must fall at least like h^1.5 (h halves per level)";
   }
   EXPECT_LT(residual.back(), 0.02);
+}
+
+// The assembly's fused kernel against the reference Kelvin solutions (kelvin_solution.h): for a
+// collocation node far from node j, the blocks H_ij and G_ij are plain quadratures of N_j T* and
+// N_j U* over the triangles around j, recomputed here with 7 points on 16 sub-triangles each.
+TEST(BemMatricesTest, FarBlocksMatchReferenceKelvinQuadrature) {
+  const TriangleMesh mesh = MakeIcosphere(0.05, 2);
+  const ElasticMaterial material = LiverMaterial();
+  const BemMatrices m = AssembleBemMatrices(mesh, material);
+  const int i = 0;
+  const Eigen::Vector3d source = mesh.vertices.row(i).transpose();
+  int checked = 0;
+  for (int j = 1; j < mesh.num_vertices(); ++j) {
+    if ((mesh.vertices.row(j).transpose() - source).norm() < 0.06) continue;  // far nodes only
+    Eigen::Matrix3d h = Eigen::Matrix3d::Zero(), g = Eigen::Matrix3d::Zero();
+    for (int f = 0; f < mesh.num_triangles(); ++f) {
+      int corner = -1;
+      for (int c = 0; c < 3; ++c)
+        if (mesh.triangles(f, c) == j) corner = c;
+      if (corner < 0) continue;
+      const Eigen::Vector3d n = TriangleNormal(mesh, f);
+      const double area = TriangleArea(mesh, f);
+      constexpr int kSplit = 4;  // 16 sub-triangles of a regular split in barycentric steps
+      for (int a = 0; a < kSplit; ++a)
+        for (int b = 0; a + b < kSplit; ++b)
+          for (int flip = 0; flip < (a + b + 1 < kSplit ? 2 : 1); ++flip)
+            for (const auto& q : TriangleGauss7()) {
+              // Sub-triangle corners in (l1, l2) steps of 1/kSplit; flip = the inverted one.
+              const double s1 = flip ? a + 1 - q.barycentric[1] : a + q.barycentric[1];
+              const double s2 = flip ? b + 1 - q.barycentric[2] : b + q.barycentric[2];
+              const double l1 = s1 / kSplit, l2 = s2 / kSplit, l0 = 1 - l1 - l2;
+              const double bary[3] = {l0, l1, l2};
+              Eigen::Vector3d x = Eigen::Vector3d::Zero();
+              for (int c = 0; c < 3; ++c) x += bary[c] * mesh.vertices.row(mesh.triangles(f, c)).transpose();
+              const double w = q.weight * area / (kSplit * kSplit) * bary[corner];
+              h += w * KelvinTraction(x - source, n, material.poisson_ratio);
+              g += w * KelvinDisplacement(x - source, LameMu(material), material.poisson_ratio);
+            }
+    }
+    EXPECT_LT((m.H.block<3, 3>(3 * i, 3 * j) - h).norm(), 2e-3 * h.norm()) << "node " << j;
+    EXPECT_LT((m.G.block<3, 3>(3 * i, 3 * j) - g).norm(), 2e-3 * g.norm()) << "node " << j;
+    ++checked;
+  }
+  EXPECT_GT(checked, 50);
 }
 
 TEST(BemMatricesTest, RejectsOpenSurfaceAndBadMaterial) {
