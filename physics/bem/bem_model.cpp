@@ -9,6 +9,8 @@ namespace vesica::physics {
 
 std::uint64_t BemCacheKey(const TriangleMesh& surface, const ElasticMaterial& material,
                           const BemQuadratureOptions& quadrature) {
+  // Bump the tag whenever the assembly or the Green's function layout changes: old files then read
+  // as stale instead of being trusted.
   std::uint64_t h = HashBytes("vesica-bem-greens-v1", 20, 0);
   h = HashBytes(surface.vertices.data(), sizeof(double) * surface.vertices.size(), h);
   h = HashBytes(surface.triangles.data(), sizeof(int) * surface.triangles.size(), h);
