@@ -8,9 +8,9 @@
 namespace vesica::app::anatomy {
 
 struct AbdominalWallShape {
-  Eigen::Vector3d centre_m{0.0, -0.04, 0.0};             ///< ellipsoid centre; metres
-  Eigen::Vector3d semi_axes_m{0.20, 0.17, 0.26};         ///< x, y (dome height), z; metres
-  double base_y_m = -0.04;  ///< the dome keeps y above this (its open, posterior rim); metres
+  Eigen::Vector3d centre_m{0.0, -0.04, 0.0};      ///< ellipsoid centre; metres
+  Eigen::Vector3d semi_axes_m{0.20, 0.17, 0.26};  ///< x, y (dome height), z; metres
+  double base_y_m = -0.04;                        ///< the dome keeps y above this (its open, posterior rim); metres
 };
 
 /// Ellipsoid field, scaled to about metres near the surface (negative inside).

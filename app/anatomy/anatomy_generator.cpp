@@ -34,8 +34,7 @@ TriangleMesh MakeLiver(const AnatomyOptions& o) {
 
 std::vector<GallbladderMesh> MakeGallbladders(const AnatomyOptions& o) {
   const ImplicitField field = [&](const Eigen::Vector3d& p) { return GallbladderDistance(o.gallbladder, p); };
-  const TriangleMesh dense =
-      ExtractIsosurface(field, GallbladderBounds(o.gallbladder, 0.002), o.gallbladder_voxel_m);
+  const TriangleMesh dense = ExtractIsosurface(field, GallbladderBounds(o.gallbladder, 0.002), o.gallbladder_voxel_m);
   std::vector<GallbladderMesh> meshes;
   for (const GallbladderResolution& resolution : o.gallbladder_resolutions) {
     TriangleMesh surface = DecimateAndSmooth(dense, {.target_vertices = resolution.surface_vertices});
@@ -137,8 +136,8 @@ std::string SummariseAnatomy(const AnatomyAssets& assets) {
                   g.tetgen_switches.c_str());
     text += line;
   }
-  std::snprintf(line, sizeof line, "abdominal wall: %d vertices, %d triangles\n",
-                assets.abdominal_wall.num_vertices(), assets.abdominal_wall.num_triangles());
+  std::snprintf(line, sizeof line, "abdominal wall: %d vertices, %d triangles\n", assets.abdominal_wall.num_vertices(),
+                assets.abdominal_wall.num_triangles());
   text += line;
   const auto& p = assets.ports;
   std::snprintf(line, sizeof line,

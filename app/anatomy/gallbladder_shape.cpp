@@ -9,8 +9,8 @@ namespace vesica::app::anatomy {
 namespace {
 
 // Distance to a segment whose radius varies linearly along it (good while the taper is mild).
-double RoundConeDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                         double ra, double rb) {
+double RoundConeDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, double ra,
+                         double rb) {
   const Eigen::Vector3d ab = b - a;
   const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
   return (p - (a + t * ab)).norm() - (ra + t * (rb - ra));
@@ -29,12 +29,12 @@ GallbladderCentreline DefaultGallbladderCentreline() {
   GallbladderCentreline c;
   // Fundus (anterior, lowest) to neck (posterior, up towards the hilum), then the duct stub
   // running medially and down towards the common bile duct.
-  c.points_m = {{-0.048, 0.040, 0.018},   // fundus
-                {-0.045, 0.020, 0.022},   // body
-                {-0.040, 0.002, 0.025},   // infundibulum
-                {-0.034, -0.010, 0.024},  // neck (Hartmann's pouch)
-                {-0.027, -0.016, 0.021},  // start of the cystic duct
-                {-0.018, -0.022, 0.017}}; // cut end of the duct stub
+  c.points_m = {{-0.048, 0.040, 0.018},    // fundus
+                {-0.045, 0.020, 0.022},    // body
+                {-0.040, 0.002, 0.025},    // infundibulum
+                {-0.034, -0.010, 0.024},   // neck (Hartmann's pouch)
+                {-0.027, -0.016, 0.021},   // start of the cystic duct
+                {-0.018, -0.022, 0.017}};  // cut end of the duct stub
   c.radii_m = {0.014, 0.015, 0.010, 0.0065, 0.0035, 0.003};
   c.blend_m = 0.004;
   return c;

@@ -2,9 +2,8 @@
 // The gallbladder as a chain of rounded cones along its centreline: fundus, body, neck
 // (Hartmann's pouch) and a cystic-duct stub, in the patient frame (x left, y anterior, z cranial).
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "app/anatomy/implicit_surface.h"
 

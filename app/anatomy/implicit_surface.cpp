@@ -1,8 +1,8 @@
 #include "app/anatomy/implicit_surface.h"
 
 #include <vtkCellArray.h>
-#include <vtkClipPolyData.h>
 #include <vtkCleanPolyData.h>
+#include <vtkClipPolyData.h>
 #include <vtkDoubleArray.h>
 #include <vtkIdList.h>
 #include <vtkImageData.h>
@@ -18,11 +18,10 @@
 #include <vtkTriangleFilter.h>
 #include <vtkWindowedSincPolyDataFilter.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-
-#include <Eigen/Geometry>
 
 namespace vesica::app::anatomy {
 
@@ -142,7 +141,7 @@ TriangleMesh DecimateAndSmooth(const TriangleMesh& dense, const DecimateSmoothOp
   smooth->SetPassBand(options.passband);
   smooth->NormalizeCoordinatesOn();  // pass band independent of the organ's size
   smooth->FeatureEdgeSmoothingOff();
-  smooth->BoundarySmoothingOff();    // keeps clipped rims where they were cut
+  smooth->BoundarySmoothingOff();  // keeps clipped rims where they were cut
   smooth->NonManifoldSmoothingOn();
   smooth->Update();
 

@@ -3,9 +3,8 @@
 // voxel volume, (i) marching cubes, (ii) decimation, (iii) smoothing, then cleaning and outward
 // orientation. Shapes are fields negative inside, zero on the surface, in the patient frame.
 
-#include <functional>
-
 #include <Eigen/Core>
+#include <functional>
 
 #include "physics/mesh/triangle_mesh.h"
 
@@ -24,8 +23,7 @@ struct Box {
 /// Marching cubes of `field` sampled every `voxel_size_m` over `box` (padded by two voxels so a
 /// shape inside the box comes out closed). Keeps the largest connected piece. Dense: use
 /// DecimateAndSmooth next.
-physics::TriangleMesh ExtractIsosurface(const ImplicitField& field, const Box& box,
-                                        double voxel_size_m);
+physics::TriangleMesh ExtractIsosurface(const ImplicitField& field, const Box& box, double voxel_size_m);
 
 struct DecimateSmoothOptions {
   int target_vertices = 1000;     ///< quadric decimation aims at this many vertices (> 3)
@@ -35,13 +33,11 @@ struct DecimateSmoothOptions {
 
 /// Quadric decimation to about `target_vertices`, windowed-sinc smoothing (boundary kept), then
 /// clean + triangulate and consistent normals. Orientation is fixed by OrientOutward afterwards.
-physics::TriangleMesh DecimateAndSmooth(const physics::TriangleMesh& dense,
-                                        const DecimateSmoothOptions& options);
+physics::TriangleMesh DecimateAndSmooth(const physics::TriangleMesh& dense, const DecimateSmoothOptions& options);
 
 /// Keeps the part of the surface on the side of the plane that `normal` points to (the clipped
 /// edge becomes the open boundary of the result).
-physics::TriangleMesh ClipKeepAbove(const physics::TriangleMesh& mesh,
-                                    const Eigen::Vector3d& plane_point_m,
+physics::TriangleMesh ClipKeepAbove(const physics::TriangleMesh& mesh, const Eigen::Vector3d& plane_point_m,
                                     const Eigen::Vector3d& normal);
 
 /// Flips every triangle if the normals, on average, point against the field's gradient (the

@@ -18,8 +18,8 @@ double WedgeField(const LiverShape& s, const Eigen::Vector3d& p) {
   const double down = Lerp(s.right_lobe_down_m, s.left_lobe_down_m, t);
   const double dz = p.z() - s.centre_m.z();
   const double w = dz / (dz > 0 ? up : down);
-  const double outline = std::pow(std::pow(std::abs(u), s.squareness) + std::pow(std::abs(v), s.squareness),
-                                  2.0 / s.squareness);
+  const double outline =
+      std::pow(std::pow(std::abs(u), s.squareness) + std::pow(std::abs(v), s.squareness), 2.0 / s.squareness);
   return outline + w * w - 1;
 }
 

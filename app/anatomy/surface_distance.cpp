@@ -1,9 +1,8 @@
 #include "app/anatomy/surface_distance.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Geometry>
 
 namespace vesica::app::anatomy {
 
@@ -31,8 +30,8 @@ std::optional<double> RayTriangle(const Eigen::Vector3d& o, const Eigen::Vector3
 
 }  // namespace
 
-Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       const Eigen::Vector3d& c) {
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return a;
@@ -55,7 +54,8 @@ Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Ve
 double DistanceToSurface(const physics::TriangleMesh& mesh, const Eigen::Vector3d& p) {
   double best = std::numeric_limits<double>::infinity();
   for (int f = 0; f < mesh.num_triangles(); ++f) {
-    best = std::min(best, (ClosestPointOnTriangle(p, Corner(mesh, f, 0), Corner(mesh, f, 1), Corner(mesh, f, 2)) - p).norm());
+    best = std::min(best,
+                    (ClosestPointOnTriangle(p, Corner(mesh, f, 0), Corner(mesh, f, 1), Corner(mesh, f, 2)) - p).norm());
   }
   return best;
 }

@@ -2,17 +2,16 @@
 // Brute-force point and ray queries against a triangle mesh: for the generator's port placement
 // and the anatomy tests (a few thousand triangles, so no acceleration structure).
 
-#include <optional>
-
 #include <Eigen/Core>
+#include <optional>
 
 #include "physics/mesh/triangle_mesh.h"
 
 namespace vesica::app::anatomy {
 
 /// Closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision Detection §5.1.5).
-Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                       const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+Eigen::Vector3d ClosestPointOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       const Eigen::Vector3d& c);
 
 /// Unsigned distance (metres) from p to the nearest triangle of the mesh.
 double DistanceToSurface(const physics::TriangleMesh& mesh, const Eigen::Vector3d& p);

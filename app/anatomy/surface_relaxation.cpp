@@ -1,5 +1,6 @@
 #include "app/anatomy/surface_relaxation.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -7,8 +8,6 @@
 #include <set>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "physics/mesh/mesh_topology.h"
 

@@ -63,8 +63,8 @@ namespace {
 
 std::string QualitySwitches(const TetQualityRequest& q, double max_volume_m3) {
   char buffer[128];
-  std::snprintf(buffer, sizeof buffer, "pq%.3g/%.3ga%.4eO%d/7%sQ", q.max_radius_edge, q.min_dihedral_deg,
-                max_volume_m3, q.optimisation_level, q.keep_surface ? "Y" : "");
+  std::snprintf(buffer, sizeof buffer, "pq%.3g/%.3ga%.4eO%d/7%sQ", q.max_radius_edge, q.min_dihedral_deg, max_volume_m3,
+                q.optimisation_level, q.keep_surface ? "Y" : "");
   return buffer;
 }
 
@@ -74,8 +74,7 @@ SizedTetMesh TetrahedraliseToNodeCount(const TriangleMesh& surface, int target_n
                                        const TetQualityRequest& quality) {
   if (target_nodes <= surface.num_vertices()) {
     throw std::invalid_argument("TetrahedraliseToNodeCount: target " + std::to_string(target_nodes) +
-                                " is not above the surface's " + std::to_string(surface.num_vertices()) +
-                                " vertices");
+                                " is not above the surface's " + std::to_string(surface.num_vertices()) + " vertices");
   }
   const double volume = physics::EnclosedVolume(surface);
   // Node count falls as the volume bound grows; bisect on its logarithm.

@@ -15,10 +15,10 @@ namespace vesica::app::anatomy {
 physics::TetrahedralMesh Tetrahedralise(const physics::TriangleMesh& surface, const std::string& switches);
 
 struct TetQualityRequest {
-  double max_radius_edge = 1.4;   ///< TetGen -q bound on circumradius / shortest edge (> 1)
-  double min_dihedral_deg = 15;   ///< TetGen -q/ bound on the smallest dihedral angle, degrees
-  bool keep_surface = true;       ///< TetGen -Y: no Steiner points on the boundary
-  int optimisation_level = 2;     ///< TetGen -O level 0..10 (flips, smoothing, insert/delete)
+  double max_radius_edge = 1.4;  ///< TetGen -q bound on circumradius / shortest edge (> 1)
+  double min_dihedral_deg = 15;  ///< TetGen -q/ bound on the smallest dihedral angle, degrees
+  bool keep_surface = true;      ///< TetGen -Y: no Steiner points on the boundary
+  int optimisation_level = 2;    ///< TetGen -O level 0..10 (flips, smoothing, insert/delete)
 };
 
 struct SizedTetMesh {

@@ -2,9 +2,8 @@
 // Trocar and laparoscope ports of the standard four-port laparoscopic cholecystectomy, placed on
 // the abdominal-wall surface, and their ports.toml file.
 
-#include <filesystem>
-
 #include <Eigen/Core>
+#include <filesystem>
 
 #include "physics/mesh/triangle_mesh.h"
 

@@ -1,6 +1,5 @@
 // vesica-anatomy: regenerates the default anatomy (data/anatomy/) and prints its mesh quality.
 #include <CLI/CLI.hpp>
-
 #include <chrono>
 #include <exception>
 #include <iostream>
@@ -27,8 +26,8 @@ int main(int argc, char** argv) {
     const auto assets = vesica::app::anatomy::GenerateAnatomy(options);
     vesica::app::anatomy::WriteAnatomy(assets, output_dir);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cout << vesica::app::anatomy::SummariseAnatomy(assets) << "written to " << output_dir << " in "
-              << seconds << " s\n";
+    std::cout << vesica::app::anatomy::SummariseAnatomy(assets) << "written to " << output_dir << " in " << seconds
+              << " s\n";
   } catch (const std::exception& e) {
     std::cerr << "vesica-anatomy: " << e.what() << "\n";
     return 1;

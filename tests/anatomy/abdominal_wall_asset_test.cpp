@@ -1,7 +1,6 @@
 // The committed abdominal wall and ports.toml: ports on the wall, a dome over the organs, and a
 // laparoscope aimed at the gallbladder.
 #include <gtest/gtest.h>
-
 #include <toml++/toml.h>
 
 #include "anatomy_test_data.h"

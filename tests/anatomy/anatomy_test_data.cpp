@@ -1,9 +1,9 @@
 #include "anatomy_test_data.h"
 
+#include <cmath>
+
 #include "app/anatomy/anatomy_generator.h"
 #include "app/mesh_io/mesh_io.h"
-
-#include <cmath>
 
 namespace vesica::app::anatomy::testing {
 
