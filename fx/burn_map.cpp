@@ -60,8 +60,7 @@ BurnMap::BurnMap(std::string name, const physics::TriangleMesh& surface, const B
 
 void BurnMap::UpdateGeometry(const physics::Vertices& vertices) {
   const std::string owner = "BurnMap '" + name_ + "'";
-  const int expected = triangles_.size() == 0 ? static_cast<int>(vertices.rows())
-                                              : triangles_.maxCoeff() + 1;
+  const int expected = triangles_.size() == 0 ? static_cast<int>(vertices.rows()) : triangles_.maxCoeff() + 1;
   if (vertices.rows() < expected) {
     throw std::invalid_argument(owner + ": UpdateGeometry got " + std::to_string(vertices.rows()) +
                                 " vertices, the surface uses " + std::to_string(expected));

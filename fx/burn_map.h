@@ -7,20 +7,19 @@
 // needs; neighbours are found by walking edge adjacency, so the spread follows the surface and
 // does not jump across a gap to another fold.
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "physics/mesh/triangle_mesh.h"
 
 namespace vesica::fx {
 
 struct BurnParams {
-  double rate_per_s = 0.5;          ///< level gained per second of contact at the touched element, > 0
-  double spread_radius_m = 0.004;   ///< fall-off radius, metres, > 0 (level gain 0 at this distance)
-  double damage_threshold = 0.5;    ///< level in (0, 1] past which an element counts as damaged
-  bool records_damage = true;       ///< liver and gallbladder wall: yes; membrane: no
+  double rate_per_s = 0.5;         ///< level gained per second of contact at the touched element, > 0
+  double spread_radius_m = 0.004;  ///< fall-off radius, metres, > 0 (level gain 0 at this distance)
+  double damage_threshold = 0.5;   ///< level in (0, 1] past which an element counts as damaged
+  bool records_damage = true;      ///< liver and gallbladder wall: yes; membrane: no
 };
 
 /// An element first burnt strictly past the damage threshold.

@@ -10,10 +10,14 @@ namespace vesica::fx {
 
 const char* ToString(CauterySurface surface) {
   switch (surface) {
-    case CauterySurface::kNone: return "none";
-    case CauterySurface::kLiver: return "liver";
-    case CauterySurface::kGallbladder: return "gallbladder";
-    case CauterySurface::kMembrane: return "membrane";
+    case CauterySurface::kNone:
+      return "none";
+    case CauterySurface::kLiver:
+      return "liver";
+    case CauterySurface::kGallbladder:
+      return "gallbladder";
+    case CauterySurface::kMembrane:
+      return "membrane";
   }
   return "unknown";
 }
@@ -27,8 +31,7 @@ void ValidateCauteryContact(const CauteryContact& contact) {
   const Eigen::Vector3d& w = contact.barycentric;
   if (w.minCoeff() < -1e-6 || w.maxCoeff() > 1 + 1e-6 || std::abs(w.sum() - 1) > 1e-6) {
     std::ostringstream msg;
-    msg << owner << ": barycentric (" << w.x() << ", " << w.y() << ", " << w.z()
-        << ") must lie in [0, 1] and sum to 1";
+    msg << owner << ": barycentric (" << w.x() << ", " << w.y() << ", " << w.z() << ") must lie in [0, 1] and sum to 1";
     throw std::invalid_argument(msg.str());
   }
 }

@@ -1,9 +1,8 @@
 #pragma once
 // What the cautery hook does during one physics step: the input of every fx effect.
 
-#include <string>
-
 #include <Eigen/Core>
+#include <string>
 
 namespace vesica::fx {
 
@@ -14,12 +13,12 @@ const char* ToString(CauterySurface surface);
 
 struct CauteryContact {
   CauterySurface surface = CauterySurface::kNone;  ///< kNone: the hook touches nothing
-  int element = -1;  ///< touched triangle of that surface (ignored when surface is kNone)
+  int element = -1;                                ///< touched triangle of that surface (ignored when surface is kNone)
   /// Barycentric weights of the touch point in `element` (each in [0, 1], summing to 1).
   Eigen::Vector3d barycentric = Eigen::Vector3d::Constant(1.0 / 3.0);
   Eigen::Vector3d p_WTip_W = Eigen::Vector3d::Zero();  ///< hook tip in world, metres
-  bool pedal_down = false;  ///< the cautery pedal (current flows only while it is down)
-  double dt_s = 0;          ///< length of the step, seconds, >= 0
+  bool pedal_down = false;                             ///< the cautery pedal (current flows only while it is down)
+  double dt_s = 0;                                     ///< length of the step, seconds, >= 0
 
   /// Burning happens only while the pedal is down and the hook touches a surface.
   bool active() const { return pedal_down && surface != CauterySurface::kNone; }

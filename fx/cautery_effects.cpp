@@ -10,12 +10,10 @@ namespace vesica::fx {
 namespace {
 
 MembraneRemoval MakeMembrane(const CauterySurfaces& surfaces, const MembraneParams& params) {
-  if (static_cast<int>(surfaces.membrane_element_springs.size()) !=
-      surfaces.membrane.num_triangles()) {
-    throw std::invalid_argument(
-        "CauteryEffects: membrane_element_springs has " +
-        std::to_string(surfaces.membrane_element_springs.size()) + " entries, membrane has " +
-        std::to_string(surfaces.membrane.num_triangles()) + " triangles");
+  if (static_cast<int>(surfaces.membrane_element_springs.size()) != surfaces.membrane.num_triangles()) {
+    throw std::invalid_argument("CauteryEffects: membrane_element_springs has " +
+                                std::to_string(surfaces.membrane_element_springs.size()) + " entries, membrane has " +
+                                std::to_string(surfaces.membrane.num_triangles()) + " triangles");
   }
   return MembraneRemoval(surfaces.membrane_element_springs, surfaces.num_springs, params);
 }
@@ -31,10 +29,14 @@ CauteryEffects::CauteryEffects(const CauterySurfaces& surfaces, const CauteryPar
 
 BurnMap& CauteryEffects::MapOf(CauterySurface surface) {
   switch (surface) {
-    case CauterySurface::kLiver: return liver_;
-    case CauterySurface::kGallbladder: return gallbladder_;
-    case CauterySurface::kMembrane: return membrane_burn_;
-    case CauterySurface::kNone: break;
+    case CauterySurface::kLiver:
+      return liver_;
+    case CauterySurface::kGallbladder:
+      return gallbladder_;
+    case CauterySurface::kMembrane:
+      return membrane_burn_;
+    case CauterySurface::kNone:
+      break;
   }
   throw std::logic_error("CauteryEffects: no burn map for surface 'none'");
 }
@@ -43,8 +45,8 @@ void CauteryEffects::Step(const CauteryContact& contact) {
   // Every check before any change, so a rejected contact leaves the state as it was.
   ValidateCauteryContact(contact);
   if (contact.surface != CauterySurface::kNone) {
-    CheckIndex(std::string("CauteryEffects: ") + ToString(contact.surface) + " surface", "element",
-               contact.element, MapOf(contact.surface).num_elements());
+    CheckIndex(std::string("CauteryEffects: ") + ToString(contact.surface) + " surface", "element", contact.element,
+               MapOf(contact.surface).num_elements());
   }
   time_s_ += contact.dt_s;
   if (contact.active()) {
@@ -56,8 +58,6 @@ void CauteryEffects::Step(const CauteryContact& contact) {
   smoke_.Update(contact.dt_s, contact.active(), contact.p_WTip_W);
 }
 
-double CauteryEffects::damaged_area_m2() const {
-  return liver_.damaged_area_m2() + gallbladder_.damaged_area_m2();
-}
+double CauteryEffects::damaged_area_m2() const { return liver_.damaged_area_m2() + gallbladder_.damaged_area_m2(); }
 
 }  // namespace vesica::fx

@@ -17,8 +17,8 @@ namespace vesica::fx {
 /// The surfaces cautery acts on; read once, fx keeps its own copies of what it needs.
 struct CauterySurfaces {
   physics::TriangleMesh liver;
-  physics::TriangleMesh gallbladder;  ///< the FEM mesh's boundary surface
-  physics::TriangleMesh membrane;     ///< one triangle per membrane element
+  physics::TriangleMesh gallbladder;                       ///< the FEM mesh's boundary surface
+  physics::TriangleMesh membrane;                          ///< one triangle per membrane element
   std::vector<std::vector<int>> membrane_element_springs;  ///< #membrane.F: springs of each element
   int num_springs = 0;
 };
@@ -26,8 +26,8 @@ struct CauterySurfaces {
 struct CauteryParams {
   BurnParams liver_burn;
   BurnParams gallbladder_burn;
-  BurnParams membrane_burn{.rate_per_s = 1.0, .spread_radius_m = 0.002, .damage_threshold = 1.0,
-                           .records_damage = false};
+  BurnParams membrane_burn{
+      .rate_per_s = 1.0, .spread_radius_m = 0.002, .damage_threshold = 1.0, .records_damage = false};
   MembraneParams membrane;
   SmokeParams smoke;
 };

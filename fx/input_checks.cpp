@@ -33,8 +33,7 @@ void CheckPositive(const std::string& owner, const char* field, double value) {
 void CheckFinite(const std::string& owner, const char* field, const Eigen::Vector3d& v) {
   if (!v.allFinite()) {
     std::ostringstream msg;
-    msg << owner << ": " << field << " is not finite (" << v.x() << ", " << v.y() << ", " << v.z()
-        << ")";
+    msg << owner << ": " << field << " is not finite (" << v.x() << ", " << v.y() << ", " << v.z() << ")";
     throw std::invalid_argument(msg.str());
   }
 }

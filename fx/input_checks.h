@@ -2,9 +2,8 @@
 // Checks of caller input at fx's door: each throws std::invalid_argument naming the owner
 // (e.g. "BurnMap 'liver'"), the field and the offending value.
 
-#include <string>
-
 #include <Eigen/Core>
+#include <string>
 
 namespace vesica::fx {
 

@@ -27,8 +27,7 @@ class MembraneRemoval {
  public:
   /// element_springs[i]: the springs membrane element i belongs to (indices in [0, num_springs)).
   /// Every spring must own at least one element. All elements start at health 1.
-  MembraneRemoval(std::vector<std::vector<int>> element_springs, int num_springs,
-                  const MembraneParams& params);
+  MembraneRemoval(std::vector<std::vector<int>> element_springs, int num_springs, const MembraneParams& params);
 
   /// The active hook touches `element` for dt_s seconds; the step ends at time_s.
   /// Touching an element already removed does nothing.

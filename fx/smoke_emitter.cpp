@@ -23,8 +23,7 @@ SmokeEmitter::SmokeEmitter(const SmokeParams& params) : params_(params), rng_(pa
   CheckPositive(kOwner, "initial_alpha", params.initial_alpha);
   if (params.initial_alpha > 1) throw std::invalid_argument(kOwner + ": initial_alpha must be <= 1");
   if (params.max_particles <= 0) {
-    throw std::invalid_argument(kOwner + ": max_particles must be > 0, got " +
-                                std::to_string(params.max_particles));
+    throw std::invalid_argument(kOwner + ": max_particles must be > 0, got " + std::to_string(params.max_particles));
   }
   particles_.reserve(static_cast<size_t>(params.max_particles));
 }

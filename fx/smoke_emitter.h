@@ -4,18 +4,17 @@
 // randomness is a seeded 64-bit generator held in the emitter, turned into doubles by bit
 // arithmetic (std:: distributions differ between standard libraries).
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <random>
 #include <vector>
 
-#include <Eigen/Core>
-
 namespace vesica::fx {
 
 struct SmokeParams {
-  double step_s = 1.0 / 120.0;       ///< fixed update step, seconds, > 0
-  double emission_rate_per_s = 60;   ///< particles per second while cautery is active, > 0
-  double lifetime_s = 1.5;           ///< age at which alpha reaches 0, seconds, > 0
+  double step_s = 1.0 / 120.0;                                    ///< fixed update step, seconds, > 0
+  double emission_rate_per_s = 60;                                ///< particles per second while cautery is active, > 0
+  double lifetime_s = 1.5;                                        ///< age at which alpha reaches 0, seconds, > 0
   Eigen::Vector3d rise_velocity_W = Eigen::Vector3d(0, 0.02, 0);  ///< m/s; +y is anterior (up)
   double velocity_spread_mps = 0.004;  ///< each component gets a uniform kick in [-s, s], >= 0
   double initial_size_m = 0.002;       ///< sprite size at birth, > 0
@@ -26,11 +25,11 @@ struct SmokeParams {
 };
 
 struct SmokeParticle {
-  Eigen::Vector3d p_W;       ///< position, metres
-  Eigen::Vector3d v_W;       ///< velocity, m/s
+  Eigen::Vector3d p_W;  ///< position, metres
+  Eigen::Vector3d v_W;  ///< velocity, m/s
   double age_s = 0;
   double size_m = 0;
-  double alpha = 0;          ///< initial_alpha * (1 - age / lifetime): 0 at end of life
+  double alpha = 0;  ///< initial_alpha * (1 - age / lifetime): 0 at end of life
 };
 
 class SmokeEmitter {
@@ -53,8 +52,8 @@ class SmokeEmitter {
   SmokeParams params_;
   std::mt19937_64 rng_;
   std::vector<SmokeParticle> particles_;
-  double carried_s_ = 0;          ///< time not yet consumed by a fixed step
-  double pending_births_ = 0;     ///< fractional particles owed by the emission rate
+  double carried_s_ = 0;       ///< time not yet consumed by a fixed step
+  double pending_births_ = 0;  ///< fractional particles owed by the emission rate
 };
 
 }  // namespace vesica::fx

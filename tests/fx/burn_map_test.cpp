@@ -1,10 +1,10 @@
 #include "fx/burn_map.h"
 
-#include <cmath>
-#include <stdexcept>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
 
 #include "fx_test_meshes.h"
 
@@ -54,9 +54,9 @@ TEST(BurnMapTest, SpreadFollowsTheSurfaceNotTheAir) {
   // Two triangles 1 mm apart but sharing no edge: the spread must not jump the gap.
   physics::TriangleMesh mesh;
   mesh.vertices.resize(6, 3);
-  mesh.vertices << 0, 0, 0,  0.01, 0, 0,  0, 0.01, 0,  0, 0, 0.001,  0.01, 0, 0.001,  0, 0.01, 0.001;
+  mesh.vertices << 0, 0, 0, 0.01, 0, 0, 0, 0.01, 0, 0, 0, 0.001, 0.01, 0, 0.001, 0, 0.01, 0.001;
   mesh.triangles.resize(2, 3);
-  mesh.triangles << 0, 1, 2,  3, 4, 5;
+  mesh.triangles << 0, 1, 2, 3, 4, 5;
   BurnMap map("gallbladder", mesh, Params(1.0, 0.01, 1.0));
   map.Burn(0, 0.5, 0.5);
   EXPECT_DOUBLE_EQ(map.level(0), 0.5);

@@ -1,10 +1,10 @@
 #include "fx/cautery_effects.h"
 
-#include <cmath>
-#include <stdexcept>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
 
 #include "fx_test_meshes.h"
 
@@ -136,23 +136,21 @@ TEST(CauteryEffectsTest, RejectsBadContactAndKeepsState) {
   const double t = fx.time_s();
   const std::vector<float> levels = fx.liver_burn().levels();
 
-  EXPECT_THAT([&] { fx.Step(Touch(CauterySurface::kLiver, 6, true)); },
-              ::testing::ThrowsMessage<std::invalid_argument>(
-                  HasSubstr("liver surface: element 6 out of range [0, 6)")));
+  EXPECT_THAT(
+      [&] { fx.Step(Touch(CauterySurface::kLiver, 6, true)); },
+      ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("liver surface: element 6 out of range [0, 6)")));
   EXPECT_THAT([&] { fx.Step(Touch(CauterySurface::kMembrane, -1, true)); },
-              ::testing::ThrowsMessage<std::invalid_argument>(
-                  HasSubstr("membrane surface: element -1 out of range")));
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("membrane surface: element -1 out of range")));
   EXPECT_THAT([&] { fx.Step(Touch(CauterySurface::kLiver, 1, true, -0.01)); },
               ::testing::ThrowsMessage<std::invalid_argument>(
                   HasSubstr("CauteryContact: dt_s must be finite and >= 0, got -0.01")));
   CauteryContact nan_tip = Touch(CauterySurface::kLiver, 1, true);
   nan_tip.p_WTip_W.x() = std::nan("");
-  EXPECT_THAT([&] { fx.Step(nan_tip); }, ::testing::ThrowsMessage<std::invalid_argument>(
-                                             HasSubstr("CauteryContact: p_WTip_W is not finite")));
+  EXPECT_THAT([&] { fx.Step(nan_tip); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("CauteryContact: p_WTip_W is not finite")));
   CauteryContact bad_weights = Touch(CauterySurface::kLiver, 1, true);
   bad_weights.barycentric = Eigen::Vector3d(0.5, 0.5, 0.5);
-  EXPECT_THAT([&] { fx.Step(bad_weights); },
-              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("barycentric")));
+  EXPECT_THAT([&] { fx.Step(bad_weights); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("barycentric")));
 
   EXPECT_EQ(fx.time_s(), t);
   EXPECT_EQ(fx.liver_burn().levels(), levels);

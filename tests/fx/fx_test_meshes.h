@@ -14,9 +14,9 @@ namespace vesica::fx::testing {
 inline physics::TriangleMesh MakeStrip() {
   physics::TriangleMesh mesh;
   mesh.vertices.resize(8, 3);
-  mesh.vertices << 0, 0, 0,  1, 0, 0,  0, 1, 0,  1, 1, 0,  2, 0, 0,  2, 1, 0,  3, 0, 0,  3, 1, 0;
+  mesh.vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 0, 0, 2, 1, 0, 3, 0, 0, 3, 1, 0;
   mesh.triangles.resize(6, 3);
-  mesh.triangles << 0, 1, 2,  1, 3, 2,  1, 4, 3,  4, 5, 3,  4, 6, 5,  6, 7, 5;
+  mesh.triangles << 0, 1, 2, 1, 3, 2, 1, 4, 3, 4, 5, 3, 4, 6, 5, 6, 7, 5;
   return mesh;
 }
 

@@ -1,10 +1,10 @@
 #include "fx/membrane_removal.h"
 
-#include <cmath>
-#include <stdexcept>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
 
 namespace vesica::fx {
 namespace {
@@ -77,19 +77,23 @@ TEST(MembraneRemovalTest, ZeroDtTouchDoesNothing) {
 
 TEST(MembraneRemovalTest, RejectsBadInput) {
   MembraneRemoval m = ThreeElementsTwoSprings(1.0);
-  EXPECT_THAT([&] { m.Touch(3, 0.1, 0.1); },
-              ::testing::ThrowsMessage<std::invalid_argument>(
-                  HasSubstr("MembraneRemoval: element 3 out of range [0, 3)")));
-  EXPECT_THAT([&] { m.Touch(0, -0.1, 0.1); },
-              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("dt_s")));
+  EXPECT_THAT([&] { m.Touch(3, 0.1, 0.1); }, ::testing::ThrowsMessage<std::invalid_argument>(
+                                                 HasSubstr("MembraneRemoval: element 3 out of range [0, 3)")));
+  EXPECT_THAT([&] { m.Touch(0, -0.1, 0.1); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("dt_s")));
   EXPECT_THAT([&] { m.Touch(0, 0.1, std::nan("")); },
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("time_s")));
   EXPECT_EQ(m.health()[0], 1.0f);
-  EXPECT_THAT([] { MembraneRemoval({{0}, {2}}, 2, {}); },
-              ::testing::ThrowsMessage<std::invalid_argument>(
-                  HasSubstr("MembraneRemoval: element 1: spring 2 out of range [0, 2)")));
-  EXPECT_THAT([] { MembraneRemoval({{0}, {0}}, 2, {}); },
-              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("spring 1 has no membrane element")));
+  EXPECT_THAT(
+      [] {
+        MembraneRemoval({{0}, {2}}, 2, {});
+      },
+      ::testing::ThrowsMessage<std::invalid_argument>(
+          HasSubstr("MembraneRemoval: element 1: spring 2 out of range [0, 2)")));
+  EXPECT_THAT(
+      [] {
+        MembraneRemoval({{0}, {0}}, 2, {});
+      },
+      ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("spring 1 has no membrane element")));
   EXPECT_THAT([] { MembraneRemoval({{0}}, 1, MembraneParams{.fade_rate_per_s = 0}); },
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("fade_rate_per_s")));
 }

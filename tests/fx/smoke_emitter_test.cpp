@@ -1,11 +1,11 @@
 #include "fx/smoke_emitter.h"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 namespace vesica::fx {
 namespace {
@@ -41,9 +41,9 @@ bool BitIdentical(const std::vector<SmokeParticle>& a, const std::vector<SmokePa
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i) {
     const double x[] = {a[i].p_W.x(), a[i].p_W.y(), a[i].p_W.z(), a[i].v_W.x(), a[i].v_W.y(),
-                        a[i].v_W.z(), a[i].age_s, a[i].size_m, a[i].alpha};
+                        a[i].v_W.z(), a[i].age_s,   a[i].size_m,  a[i].alpha};
     const double y[] = {b[i].p_W.x(), b[i].p_W.y(), b[i].p_W.z(), b[i].v_W.x(), b[i].v_W.y(),
-                        b[i].v_W.z(), b[i].age_s, b[i].size_m, b[i].alpha};
+                        b[i].v_W.z(), b[i].age_s,   b[i].size_m,  b[i].alpha};
     if (std::memcmp(x, y, sizeof(x)) != 0) return false;
   }
   return true;
@@ -139,8 +139,7 @@ TEST(SmokeEmitterTest, RejectsBadInput) {
   EXPECT_THAT([&] { smoke.Update(-0.01, true, Eigen::Vector3d::Zero()); },
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("SmokeEmitter: dt_s")));
   EXPECT_THAT([&] { smoke.Update(0.01, true, Eigen::Vector3d(0, std::nan(""), 0)); },
-              ::testing::ThrowsMessage<std::invalid_argument>(
-                  HasSubstr("SmokeEmitter: p_Source_W is not finite")));
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("SmokeEmitter: p_Source_W is not finite")));
   EXPECT_TRUE(smoke.particles().empty());
   SmokeParams bad = OnePerStep();
   bad.max_particles = 0;
