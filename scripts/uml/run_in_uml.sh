@@ -15,7 +15,7 @@ program=$(readlink -f "$1"); shift
 # 1. A kernel with CAN: run directly (creating vcan0 needs root and the vcan module).
 if ip link show vcan0 >/dev/null 2>&1 || { ip link add dev vcan0 type vcan 2>/dev/null && ip link set vcan0 mtu 72 && ip link set up vcan0; }; then
   echo "run_in_uml: vcan0 available on this kernel, running directly"
-  exec "$program" "$@"
+  VESICA_REQUIRE_CAN=1 exec "$program" "$@"
 fi
 
 # 2. User-mode Linux.
@@ -34,7 +34,7 @@ for a in "$@"; do printf '%s\n' "$a" >> "$work/args"; done
 cat > "$work/init" <<INIT
 #!/bin/sh
 export PATH=/usr/sbin:/usr/bin:/sbin:/bin
-export HOME=/tmp CI=\${CI:-true} VESICA_CAN_INTERFACE=vcan0
+export HOME=/tmp CI=\${CI:-true} VESICA_CAN_INTERFACE=vcan0 VESICA_REQUIRE_CAN=1
 mount -t proc proc /proc 2>/dev/null
 mount -t sysfs sys /sys 2>/dev/null
 # insmod from kmod when installed; otherwise finit_module(2) through python3 (x86-64 syscall 313).
