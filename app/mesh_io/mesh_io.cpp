@@ -1,6 +1,8 @@
 #include "app/mesh_io/mesh_io.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
+#include <vtkCommand.h>
 #include <vtkCellType.h>
 #include <vtkDataSetSurfaceFilter.h>
 #include <vtkIdList.h>
@@ -52,11 +54,39 @@ void RequireReadable(const fs::path& path) {
   throw MeshError(path.string() + ": unsupported mesh format '" + Extension(path) + "' (expected " + allowed + ")");
 }
 
+// VTK readers report malformed content through error events (and otherwise return a truncated
+// mesh): collect them so that the file is rejected with VTK's own words.
+class ReaderErrors {
+ public:
+  explicit ReaderErrors(vtkObject* reader) {
+    callback_->SetClientData(&message_);
+    callback_->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
+      auto* message = static_cast<std::string*>(client);
+      if (message->empty() && call) *message = static_cast<const char*>(call);
+    });
+    reader->AddObserver(vtkCommand::ErrorEvent, callback_);
+  }
+  void ThrowIfAny(const fs::path& path) const {
+    if (message_.empty()) return;
+    std::string m = message_;
+    // VTK prefixes "ERROR: In file, line N / vtkReader (0x..): "; keep its last line.
+    if (const auto nl = m.find_last_of('\n', m.size() > 1 ? m.size() - 2 : 0); nl != std::string::npos) m = m.substr(nl + 1);
+    while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
+    throw MeshError(path.string() + ": cannot be read: " + m);
+  }
+
+ private:
+  vtkSmartPointer<vtkCallbackCommand> callback_ = vtkSmartPointer<vtkCallbackCommand>::New();
+  std::string message_;
+};
+
 template <typename Reader>
 vtkSmartPointer<vtkPolyData> ReadPoly(const fs::path& path) {
   auto reader = vtkSmartPointer<Reader>::New();
+  const ReaderErrors errors(reader);
   reader->SetFileName(path.string().c_str());
   reader->Update();
+  errors.ThrowIfAny(path);
   return reader->GetOutput();
 }
 
@@ -72,13 +102,17 @@ vtkSmartPointer<vtkPolyData> ReadAnyPoly(const fs::path& path) {
     if (!reader->IsFilePolyData()) {
       // A legacy unstructured grid: take its outer surface.
       auto grid = vtkSmartPointer<vtkUnstructuredGridReader>::New();
+      const ReaderErrors grid_errors(grid);
       grid->SetFileName(path.string().c_str());
       auto surface = vtkSmartPointer<vtkDataSetSurfaceFilter>::New();
       surface->SetInputConnection(grid->GetOutputPort());
       surface->Update();
+      grid_errors.ThrowIfAny(path);
       return surface->GetOutput();
     }
+    const ReaderErrors errors(reader);
     reader->Update();
+    errors.ThrowIfAny(path);
     return reader->GetOutput();
   }
   UnsupportedExtension(path, ".obj, .stl, .ply, .vtp or .vtk");
@@ -88,15 +122,19 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadGrid(const fs::path& path) {
   const std::string ext = Extension(path);
   if (ext == ".vtu") {
     auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+    const ReaderErrors errors(reader);
     reader->SetFileName(path.string().c_str());
     reader->Update();
+    errors.ThrowIfAny(path);
     return reader->GetOutput();
   }
   if (ext == ".vtk") {
     auto reader = vtkSmartPointer<vtkUnstructuredGridReader>::New();
     reader->SetFileName(path.string().c_str());
     if (!reader->IsFileUnstructuredGrid()) throw MeshError(path.string() + ": not a legacy VTK unstructured grid");
+    const ReaderErrors errors(reader);
     reader->Update();
+    errors.ThrowIfAny(path);
     return reader->GetOutput();
   }
   UnsupportedExtension(path, ".vtu or .vtk");
