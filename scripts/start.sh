@@ -3,5 +3,6 @@
 # (keyboard/mouse) instruments. Extra arguments go to vesica-trainer (see --help).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
+. "$here/scripts/openblas_env.sh"
 "$here/scripts/setup.sh" release
 exec "$here/build/release/app/trainer/vesica-trainer" "$@"

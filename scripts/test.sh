@@ -4,6 +4,7 @@
 # unit tests that need no display (physics, firmware_protocol, device).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
+. "$here/scripts/openblas_env.sh"
 cd "$here"
 start=$(date +%s)
 "$here/scripts/setup.sh" release
