@@ -3,6 +3,7 @@
 
 #include <QMainWindow>
 #include <memory>
+#include <vector>
 
 #include "app/render/laparoscope_view.h"
 
@@ -15,9 +16,15 @@ class TrainerWindow : public QMainWindow {
   TrainerWindow(const Scenario& scenario, std::unique_ptr<LaparoscopeView> view);
   ~TrainerWindow() override;
 
+ protected:
+  /// Instrument keys (keyboard_control.h) reach us before VTK's camera interactor sees them.
+  bool eventFilter(QObject* watched, QEvent* event) override;
+
  private:
   std::unique_ptr<LaparoscopeView> view_;
   QVTKOpenGLNativeWidget* vtk_widget_ = nullptr;
+  std::vector<double> max_insertion_m_;
+  bool pedal_ = false;
 };
 
 }  // namespace vesica::app
