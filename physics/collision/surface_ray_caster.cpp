@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <Eigen/Geometry>
+
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
 #include <BulletCollision/CollisionShapes/btTriangleCallback.h>
 #include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>

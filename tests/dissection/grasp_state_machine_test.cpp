@@ -17,15 +17,26 @@ SurfaceHit Touch(int triangle) {
   return h;
 }
 
-GraspInput Open() { return {.jaw_angle = 0.5}; }
+GraspInput Jaw(double angle) {
+  GraspInput in;
+  in.jaw_angle = angle;
+  return in;
+}
+
+GraspInput Open() { return Jaw(0.5); }
 
 GraspInput CloseOn(std::vector<SurfaceHit> hits) {
-  return {.jaw_angle = 0.0, .hits = std::move(hits)};
+  GraspInput in = Jaw(0.0);
+  in.hits = std::move(hits);
+  return in;
 }
 
 // Holding input: the jaw at the origin, each grasped point at the given offset and force.
 GraspInput Hold(std::vector<Eigen::Vector3d> positions, std::vector<double> forces) {
-  return {.jaw_angle = 0.0, .grasped_positions = std::move(positions), .constraint_forces = std::move(forces)};
+  GraspInput in = Jaw(0.0);
+  in.grasped_positions = std::move(positions);
+  in.constraint_forces = std::move(forces);
+  return in;
 }
 
 TEST(GraspStateMachineTest, ClosingWhileTouchingGraspsTheTouchedElements) {
@@ -46,7 +57,7 @@ TEST(GraspStateMachineTest, ClosingInAirGraspsNothingUntilReopened) {
   EXPECT_EQ(g.state(), State::kClosedEmpty);
   EXPECT_FALSE(g.Update(CloseOn({Touch(1)})).grasped);  // touching with a shut jaw
   EXPECT_EQ(g.state(), State::kClosedEmpty);
-  g.Update({.jaw_angle = 0.1});  // between the thresholds: still shut (hysteresis)
+  g.Update(Jaw(0.1));  // between the thresholds: still shut (hysteresis)
   EXPECT_EQ(g.state(), State::kClosedEmpty);
   g.Update(Open());
   EXPECT_EQ(g.state(), State::kOpen);
@@ -104,7 +115,7 @@ TEST(GraspStateMachineTest, RejectsBadInput) {
   EXPECT_THROW(GraspStateMachine({.slip_distance = 0.0}), std::invalid_argument);
   EXPECT_THROW(GraspStateMachine({.friction_limit = -1.0}), std::invalid_argument);
   GraspStateMachine g;
-  EXPECT_THROW(g.Update({.jaw_angle = NAN}), std::invalid_argument);
+  EXPECT_THROW(g.Update(Jaw(NAN)), std::invalid_argument);
   g.Update(CloseOn({Touch(3)}));
   EXPECT_THROW(g.Update(Hold({}, {})), std::invalid_argument);
   EXPECT_EQ(g.state(), State::kHolding);  // rejected input changes nothing
