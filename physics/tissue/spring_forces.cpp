@@ -41,6 +41,7 @@ TissueNodalForces ComputeTissueForces(const ConnectiveTissue& tissue, const Tetr
     // Barycentric transpose: a point force spreads to the nodes by the same weights.
     for (int k = 0; k < 4; ++k)
       out.gallbladder.row(gb.tets(s.gallbladder_tet, k)) += s.gallbladder_weights[k] * f.transpose();
+    out.liver_points.push_back({s.liver_triangle, s.liver_weights, -f});
     for (int k = 0; k < 3; ++k)
       out.liver.row(liver.triangles(s.liver_triangle, k)) -= s.liver_weights[k] * f.transpose();
   }

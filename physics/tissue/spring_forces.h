@@ -1,5 +1,7 @@
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "physics/tissue/connective_tissue.h"
@@ -21,9 +23,15 @@ Eigen::Vector3d SpringForceOnGallbladder(const Eigen::Vector3d& x_gallbladder,
 
 /// Nodal forces of all alive springs: barycentric transpose onto the FEM gallbladder nodes
 /// (#GB.V by 3) and onto the liver surface vertices (#L.V by 3). Momentum is conserved.
+struct LiverPointForce {
+  int triangle = -1;                                  ///< liver surface triangle
+  Eigen::Vector3d weights = Eigen::Vector3d::Zero();  ///< barycentric point on it
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();    ///< N, on the liver
+};
 struct TissueNodalForces {
   Vertices gallbladder;  ///< N, per FEM node
   Vertices liver;        ///< N, per liver surface vertex
+  std::vector<LiverPointForce> liver_points;  ///< N, one per alive spring, for BEM tractions
 };
 TissueNodalForces ComputeTissueForces(const ConnectiveTissue& tissue, const TetrahedralMesh& gallbladder,
                                       const Vertices& gallbladder_velocities,

@@ -105,6 +105,9 @@ TEST(ConnectiveTissueTest, NodalForcesConserveMomentumAndOpposeOnTheTwoBodies) {
   const Eigen::Vector3d total_liver = f.liver.colwise().sum().transpose();
   EXPECT_TRUE(total_gb.isApprox(Eigen::Vector3d(0, 0, 15 * per_spring), 1e-12));
   EXPECT_TRUE((total_gb + total_liver).isZero(1e-14));
+  ASSERT_EQ(f.liver_points.size(), 15u);
+  for (const LiverPointForce& p : f.liver_points)
+    EXPECT_TRUE(p.force.isApprox(Eigen::Vector3d(0, 0, -per_spring), 1e-12));
   // Each spring's gallbladder end is a node: that node alone carries the spring force.
   EXPECT_NEAR(f.gallbladder(t.springs[0].gallbladder_vertex, 2), per_spring, 1e-14);
   // Cutting removes exactly that spring's share.
