@@ -31,7 +31,7 @@ TissueNodalForces ComputeTissueForces(const ConnectiveTissue& tissue, const Tetr
                                 std::to_string(liver_velocities.rows()) +
                                 " rows, meshes have " + std::to_string(gb.num_vertices()) + " / " +
                                 std::to_string(liver.num_vertices()) + " vertices");
-  TissueNodalForces out{Vertices::Zero(gb.num_vertices(), 3), Vertices::Zero(liver.num_vertices(), 3)};
+  TissueNodalForces out{Vertices::Zero(gb.num_vertices(), 3), Vertices::Zero(liver.num_vertices(), 3), {}};
   for (const TissueSpring& s : tissue.springs) {
     if (!s.alive) continue;
     const Eigen::Vector3d f = SpringForceOnGallbladder(
