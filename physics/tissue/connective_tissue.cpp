@@ -56,8 +56,14 @@ ConnectiveTissue CreateConnectiveTissue(const TriangleMesh& liver,
     const Eigen::Vector3d p = gallbladder.vertices.row(v).transpose();
     // The offset vertex collides with the liver iff its offset path crosses the liver surface;
     // the crossing is where the ray toward the liver meets it.
-    const auto hit = caster.FirstHit(liver_id, {p, p + settings.offset * dir});
+    auto hit = caster.FirstHit(liver_id, {p, p + settings.offset * dir});
     if (!hit) continue;
+    // Leaving the liver through its far side means the vertex already lies inside it: attach
+    // to the face it entered through, behind it along the same line.
+    if (hit->from_inside) {
+      hit = caster.FirstHit(liver_id, {p, p - settings.offset * dir});
+      if (!hit) continue;  // deeper than the offset: no sensible attachment
+    }
     TissueSpring s;
     s.liver_triangle = hit->triangle;
     s.liver_weights = hit->weights;

@@ -42,7 +42,8 @@ struct ConnectiveTissue {
 /// Paper §2.4: offsets each gallbladder surface vertex by `offset` toward the liver; a vertex
 /// whose offset path crosses the liver surface gets a spring from it to the crossing (the ray
 /// toward the liver), the liver end stored as triangle + weights, the gallbladder end as
-/// tetrahedron + weights. Membrane triangles join springs whose vertices share a surface edge.
+/// tetrahedron + weights. A vertex already inside a closed liver (the ray leaves it first) is
+/// attached to the face behind it, within `offset`. Membrane triangles join springs whose vertices share a surface edge.
 /// Throws std::invalid_argument on a zero direction, non-positive offset or empty meshes.
 ConnectiveTissue CreateConnectiveTissue(const TriangleMesh& liver,
                                         const TetrahedralMesh& gallbladder,

@@ -5,6 +5,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "physics/mesh/mesh_topology.h"
 #include "physics/mesh/primitives.h"
 #include "physics/tissue/spring_forces.h"
 
@@ -51,6 +52,21 @@ TEST(ConnectiveTissueTest, SpringsGrowFromTheTopVerticesUnderTheLiver) {
     EXPECT_TRUE(LiverEnd(s, liver.vertices, liver.triangles).isApprox(p + Eigen::Vector3d(0, 0, 0.003), 1e-12));
     EXPECT_NEAR(s.liver_weights.sum(), 1.0, 1e-12);
     EXPECT_GE(s.liver_weights.minCoeff(), -1e-12);
+  }
+}
+
+TEST(ConnectiveTissueTest, VerticesInsideAClosedLiverAttachToTheFaceTheyEntered) {
+  // Closed liver slab z in [19, 23] mm: the gallbladder's top vertices (z = 20 mm) are 1 mm in.
+  TriangleMesh liver = ExtractBoundary(MakeBoxTetMesh({0.03, 0.05, 0.004}, {3, 5, 1})).surface;
+  liver.vertices.rowwise() += Eigen::RowVector3d(-0.007, -0.004, 0.019);
+  const TetrahedralMesh gb = GallbladderBox();
+  const ConnectiveTissue t = CreateConnectiveTissue(liver, gb, {{0, 0, 1}, 5e-3});
+  ASSERT_EQ(t.springs.size(), 15u);
+  for (const TissueSpring& s : t.springs) {
+    const Eigen::Vector3d p = gb.vertices.row(s.gallbladder_vertex).transpose();
+    EXPECT_NEAR(s.rest_length, 0.001, 1e-12);
+    EXPECT_NEAR(LiverEnd(s, liver.vertices, liver.triangles).z(), 0.019, 1e-12);
+    EXPECT_NEAR(p.z(), 0.02, 1e-15);
   }
 }
 
