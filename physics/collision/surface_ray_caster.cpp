@@ -1,14 +1,13 @@
 #include "physics/collision/surface_ray_caster.h"
 
-#include <limits>
-#include <stdexcept>
-#include <string>
-
-#include <Eigen/Geometry>
-
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
 #include <BulletCollision/CollisionShapes/btTriangleCallback.h>
 #include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
+
+#include <Eigen/Geometry>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace vesica::physics {
 namespace {
@@ -17,8 +16,8 @@ namespace {
 constexpr double kAabbMarginM = 1e-3;
 
 // Exact segment/triangle crossing (Moller-Trumbore) in double precision.
-std::optional<SurfaceHit> IntersectTriangle(const ToolSegment& s, const Eigen::Vector3d& p0,
-                                            const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+std::optional<SurfaceHit> IntersectTriangle(const ToolSegment& s, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                            const Eigen::Vector3d& p2) {
   const Eigen::Vector3d d = s.b - s.a;
   const Eigen::Vector3d e1 = p1 - p0;
   const Eigen::Vector3d e2 = p2 - p0;
@@ -46,21 +45,20 @@ std::optional<SurfaceHit> IntersectTriangle(const ToolSegment& s, const Eigen::V
 void CheckSurface(const TriangleMesh& m, const char* where) {
   if (m.num_vertices() == 0 || m.num_triangles() == 0)
     throw std::invalid_argument(std::string(where) + ": surface has no vertices or triangles");
-  if (!m.vertices.allFinite())
-    throw std::invalid_argument(std::string(where) + ": non-finite vertex position");
+  if (!m.vertices.allFinite()) throw std::invalid_argument(std::string(where) + ": non-finite vertex position");
   for (int f = 0; f < m.num_triangles(); ++f)
     for (int k = 0; k < 3; ++k)
       if (m.triangles(f, k) < 0 || m.triangles(f, k) >= m.num_vertices())
-        throw std::invalid_argument(std::string(where) + ": triangle " + std::to_string(f) +
-                                    " refers to vertex " + std::to_string(m.triangles(f, k)) +
-                                    " outside 0.." + std::to_string(m.num_vertices() - 1));
+        throw std::invalid_argument(std::string(where) + ": triangle " + std::to_string(f) + " refers to vertex " +
+                                    std::to_string(m.triangles(f, k)) + " outside 0.." +
+                                    std::to_string(m.num_vertices() - 1));
 }
 
 }  // namespace
 
 struct SurfaceRayCaster::Surface {
-  TriangleMesh mesh;                    // double-precision positions used for exact hits
-  std::vector<btScalar> positions;      // Bullet's copy, refreshed before each refit
+  TriangleMesh mesh;                // double-precision positions used for exact hits
+  std::vector<btScalar> positions;  // Bullet's copy, refreshed before each refit
   std::vector<int> indices;
   std::unique_ptr<btTriangleIndexVertexArray> mesh_interface;
   std::unique_ptr<btBvhTriangleMeshShape> shape;
@@ -90,8 +88,8 @@ int SurfaceRayCaster::AddSurface(const TriangleMesh& surface) {
   s->CopyPositions();
   s->indices.assign(surface.triangles.data(), surface.triangles.data() + surface.triangles.size());
   s->mesh_interface = std::make_unique<btTriangleIndexVertexArray>(
-      surface.num_triangles(), s->indices.data(), 3 * static_cast<int>(sizeof(int)),
-      surface.num_vertices(), s->positions.data(), 3 * static_cast<int>(sizeof(btScalar)));
+      surface.num_triangles(), s->indices.data(), 3 * static_cast<int>(sizeof(int)), surface.num_vertices(),
+      s->positions.data(), 3 * static_cast<int>(sizeof(btScalar)));
   const auto [lo, hi] = s->Aabb();
   s->shape = std::make_unique<btBvhTriangleMeshShape>(s->mesh_interface.get(), true, lo, hi, true);
   surfaces_.push_back(std::move(s));
@@ -103,12 +101,11 @@ void SurfaceRayCaster::UpdateVertices(int id, const Vertices& vertices) {
     throw std::out_of_range("SurfaceRayCaster::UpdateVertices: no surface " + std::to_string(id));
   Surface& s = *surfaces_[id];
   if (vertices.rows() != s.mesh.num_vertices())
-    throw std::invalid_argument("SurfaceRayCaster::UpdateVertices: surface " + std::to_string(id) +
-                                " has " + std::to_string(s.mesh.num_vertices()) + " vertices, got " +
+    throw std::invalid_argument("SurfaceRayCaster::UpdateVertices: surface " + std::to_string(id) + " has " +
+                                std::to_string(s.mesh.num_vertices()) + " vertices, got " +
                                 std::to_string(vertices.rows()));
   if (!vertices.allFinite())
-    throw std::invalid_argument("SurfaceRayCaster::UpdateVertices: non-finite vertex on surface " +
-                                std::to_string(id));
+    throw std::invalid_argument("SurfaceRayCaster::UpdateVertices: non-finite vertex on surface " + std::to_string(id));
   s.mesh.vertices = vertices;
   s.CopyPositions();
   const auto [lo, hi] = s.Aabb();
@@ -119,16 +116,15 @@ namespace {
 // Collects the nearest exact crossing among the triangles Bullet's BVH reports.
 class NearestHitCallback : public btTriangleCallback {
  public:
-  NearestHitCallback(const TriangleMesh& mesh, const ToolSegment& seg, int id)
-      : mesh_(mesh), seg_(seg), id_(id) {}
+  NearestHitCallback(const TriangleMesh& mesh, const ToolSegment& seg, int id) : mesh_(mesh), seg_(seg), id_(id) {}
   void processTriangle(btVector3*, int, int triangle) override {
     const auto& t = mesh_.triangles;
     auto hit = IntersectTriangle(seg_, mesh_.vertices.row(t(triangle, 0)).transpose(),
                                  mesh_.vertices.row(t(triangle, 1)).transpose(),
                                  mesh_.vertices.row(t(triangle, 2)).transpose());
     // Ties broken by triangle index so results do not depend on traversal order.
-    if (hit && (!best || hit->distance < best->distance ||
-                (hit->distance == best->distance && triangle < best->triangle))) {
+    if (hit &&
+        (!best || hit->distance < best->distance || (hit->distance == best->distance && triangle < best->triangle))) {
       hit->surface = id_;
       hit->triangle = triangle;
       best = hit;

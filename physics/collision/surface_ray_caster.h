@@ -1,10 +1,9 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <optional>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "physics/mesh/triangle_mesh.h"
 
@@ -18,13 +17,13 @@ struct ToolSegment {
 
 /// First crossing of a segment with an organ surface (paper §2.5.1).
 struct SurfaceHit {
-  int surface = -1;                              ///< id returned by AddSurface
-  int triangle = -1;                             ///< row of the surface's triangles
+  int surface = -1;                                   ///< id returned by AddSurface
+  int triangle = -1;                                  ///< row of the surface's triangles
   Eigen::Vector3d weights = Eigen::Vector3d::Zero();  ///< barycentric on the triangle
   Eigen::Vector3d point = Eigen::Vector3d::Zero();    ///< world, metres
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();   ///< unit geometric normal (winding order)
-  double distance = 0.0;                         ///< from a along the segment, metres
-  bool from_inside = false;  ///< the segment crossed the triangle against its normal
+  double distance = 0.0;                              ///< from a along the segment, metres
+  bool from_inside = false;                           ///< the segment crossed the triangle against its normal
 };
 
 /// Ray-based collision of tool segments against deforming triangle surfaces. Each surface

@@ -14,8 +14,7 @@ GraspStateMachine::GraspStateMachine(const GraspSettings& s) : settings_(s) {
 }
 
 GraspEvents GraspStateMachine::Update(const GraspInput& in) {
-  if (!std::isfinite(in.jaw_angle))
-    throw std::invalid_argument("GraspStateMachine::Update: jaw_angle is not finite");
+  if (!std::isfinite(in.jaw_angle)) throw std::invalid_argument("GraspStateMachine::Update: jaw_angle is not finite");
   GraspEvents events;
   const bool closed = in.jaw_angle <= settings_.close_angle;
   const bool open = in.jaw_angle >= settings_.open_angle;
@@ -41,10 +40,9 @@ GraspEvents GraspStateMachine::Update(const GraspInput& in) {
         break;
       }
       if (in.grasped_positions.size() != points_.size() || in.constraint_forces.size() != points_.size())
-        throw std::invalid_argument(
-            "GraspStateMachine::Update: holding " + std::to_string(points_.size()) +
-            " points but got " + std::to_string(in.grasped_positions.size()) + " positions and " +
-            std::to_string(in.constraint_forces.size()) + " forces");
+        throw std::invalid_argument("GraspStateMachine::Update: holding " + std::to_string(points_.size()) +
+                                    " points but got " + std::to_string(in.grasped_positions.size()) +
+                                    " positions and " + std::to_string(in.constraint_forces.size()) + " forces");
       std::vector<GraspPoint> kept;
       for (size_t i = 0; i < points_.size(); ++i) {
         const bool too_far = (in.grasped_positions[i] - in.jaw_position).norm() > settings_.slip_distance;

@@ -1,8 +1,7 @@
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "physics/collision/surface_ray_caster.h"
 
@@ -10,10 +9,10 @@ namespace vesica::physics {
 
 /// Grasp thresholds (paper §2.5.2). Jaw angles in radians, 0 = closed.
 struct GraspSettings {
-  double close_angle = 0.05;      ///< rad, jaw at or below this counts as closed
-  double open_angle = 0.15;       ///< rad, > close_angle: at or above this counts as open (hysteresis)
-  double slip_distance = 10e-3;   ///< m, > 0: a grasped point further than this from the jaw slips
-  double friction_limit = 5.0;    ///< N, > 0: constraint force above this makes the point slip
+  double close_angle = 0.05;     ///< rad, jaw at or below this counts as closed
+  double open_angle = 0.15;      ///< rad, > close_angle: at or above this counts as open (hysteresis)
+  double slip_distance = 10e-3;  ///< m, > 0: a grasped point further than this from the jaw slips
+  double friction_limit = 5.0;   ///< N, > 0: constraint force above this makes the point slip
 };
 
 /// A grasped surface point, held by barycentric mapping on the touched triangle.
@@ -25,9 +24,9 @@ struct GraspPoint {
 
 /// Per-step inputs, all injected by the scene.
 struct GraspInput {
-  double jaw_angle = 0.0;                              ///< rad
+  double jaw_angle = 0.0;                                  ///< rad
   Eigen::Vector3d jaw_position = Eigen::Vector3d::Zero();  ///< m, grasp point between the jaws
-  std::vector<SurfaceHit> hits;                        ///< this step's jaw-segment contacts
+  std::vector<SurfaceHit> hits;                            ///< this step's jaw-segment contacts
   /// Current world position (m) and constraint force magnitude (N) of each grasped point,
   /// in the order of points(); ignored unless grasping.
   std::vector<Eigen::Vector3d> grasped_positions;

@@ -20,8 +20,8 @@ int ConnectiveTissue::num_alive() const {
 namespace {
 
 // Gallbladder end: a tet containing the vertex, weight 1 on that corner.
-std::pair<int, Eigen::Vector4d> VertexInTet(const std::vector<std::vector<int>>& incident,
-                                            const Tetrahedra& tets, int v) {
+std::pair<int, Eigen::Vector4d> VertexInTet(const std::vector<std::vector<int>>& incident, const Tetrahedra& tets,
+                                            int v) {
   const int t = incident[v].front();
   Eigen::Vector4d w = Eigen::Vector4d::Zero();
   for (int k = 0; k < 4; ++k)
@@ -31,8 +31,7 @@ std::pair<int, Eigen::Vector4d> VertexInTet(const std::vector<std::vector<int>>&
 
 }  // namespace
 
-ConnectiveTissue CreateConnectiveTissue(const TriangleMesh& liver,
-                                        const TetrahedralMesh& gallbladder,
+ConnectiveTissue CreateConnectiveTissue(const TriangleMesh& liver, const TetrahedralMesh& gallbladder,
                                         const ConnectiveTissueSettings& settings) {
   const double dir_norm = settings.toward_liver.norm();
   if (!(dir_norm > 0.0) || !settings.toward_liver.allFinite())
@@ -40,8 +39,7 @@ ConnectiveTissue CreateConnectiveTissue(const TriangleMesh& liver,
   if (!(settings.offset > 0.0))
     throw std::invalid_argument("CreateConnectiveTissue: settings.offset must be > 0 m, got " +
                                 std::to_string(settings.offset));
-  if (gallbladder.num_tets() == 0)
-    throw std::invalid_argument("CreateConnectiveTissue: gallbladder has no tetrahedra");
+  if (gallbladder.num_tets() == 0) throw std::invalid_argument("CreateConnectiveTissue: gallbladder has no tetrahedra");
   const Eigen::Vector3d dir = settings.toward_liver / dir_norm;
 
   SurfaceRayCaster caster;
@@ -104,8 +102,7 @@ Eigen::Vector3d LiverEnd(const TissueSpring& s, const Vertices& v, const Triangl
 
 Eigen::Vector3d GallbladderEnd(const TissueSpring& s, const Vertices& v, const Tetrahedra& t) {
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 4; ++k)
-    x += s.gallbladder_weights[k] * v.row(t(s.gallbladder_tet, k)).transpose();
+  for (int k = 0; k < 4; ++k) x += s.gallbladder_weights[k] * v.row(t(s.gallbladder_tet, k)).transpose();
   return x;
 }
 

@@ -1,8 +1,7 @@
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "physics/mesh/tetrahedral_mesh.h"
 #include "physics/mesh/triangle_mesh.h"
@@ -24,7 +23,7 @@ struct TissueSpring {
 /// Membrane sheet over the springs for display and burning: points 2s (gallbladder end) and
 /// 2s+1 (liver end) of spring s; each triangle belongs to the two springs of its edge.
 struct TissueMembrane {
-  Triangles triangles;                    ///< #M by 3, indices into spring end points
+  Triangles triangles;                                             ///< #M by 3, indices into spring end points
   Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor> springs;  ///< #M by 2
 };
 
@@ -43,15 +42,13 @@ struct ConnectiveTissue {
 /// whose offset path crosses the liver surface gets a spring from it to the crossing (the ray
 /// toward the liver), the liver end stored as triangle + weights, the gallbladder end as
 /// tetrahedron + weights. A vertex already inside a closed liver (the ray leaves it first) is
-/// attached to the face behind it, within `offset`. Membrane triangles join springs whose vertices share a surface edge.
-/// Throws std::invalid_argument on a zero direction, non-positive offset or empty meshes.
-ConnectiveTissue CreateConnectiveTissue(const TriangleMesh& liver,
-                                        const TetrahedralMesh& gallbladder,
+/// attached to the face behind it, within `offset`. Membrane triangles join springs whose vertices share a surface
+/// edge. Throws std::invalid_argument on a zero direction, non-positive offset or empty meshes.
+ConnectiveTissue CreateConnectiveTissue(const TriangleMesh& liver, const TetrahedralMesh& gallbladder,
                                         const ConnectiveTissueSettings& settings);
 
 /// Current positions of a spring's two ends.
-Eigen::Vector3d LiverEnd(const TissueSpring& s, const Vertices& liver_vertices,
-                         const Triangles& liver_triangles);
+Eigen::Vector3d LiverEnd(const TissueSpring& s, const Vertices& liver_vertices, const Triangles& liver_triangles);
 Eigen::Vector3d GallbladderEnd(const TissueSpring& s, const Vertices& gallbladder_vertices,
                                const Tetrahedra& gallbladder_tets);
 

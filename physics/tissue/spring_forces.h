@@ -1,8 +1,7 @@
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "physics/tissue/connective_tissue.h"
 
@@ -15,11 +14,9 @@ struct SpringMaterial {
 
 /// Force on the gallbladder end of one spring, with d = x_liver - x_gb and v = v_liver - v_gb:
 /// f = k (|d| - L0) d/|d| + c (v . d/|d|) d/|d|. The liver end gets -f. Zero when |d| = 0.
-Eigen::Vector3d SpringForceOnGallbladder(const Eigen::Vector3d& x_gallbladder,
-                                         const Eigen::Vector3d& x_liver,
-                                         const Eigen::Vector3d& v_gallbladder,
-                                         const Eigen::Vector3d& v_liver, double rest_length,
-                                         const SpringMaterial& material);
+Eigen::Vector3d SpringForceOnGallbladder(const Eigen::Vector3d& x_gallbladder, const Eigen::Vector3d& x_liver,
+                                         const Eigen::Vector3d& v_gallbladder, const Eigen::Vector3d& v_liver,
+                                         double rest_length, const SpringMaterial& material);
 
 /// Nodal forces of all alive springs: barycentric transpose onto the FEM gallbladder nodes
 /// (#GB.V by 3) and onto the liver surface vertices (#L.V by 3). Momentum is conserved.
@@ -29,13 +26,12 @@ struct LiverPointForce {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();    ///< N, on the liver
 };
 struct TissueNodalForces {
-  Vertices gallbladder;  ///< N, per FEM node
-  Vertices liver;        ///< N, per liver surface vertex
+  Vertices gallbladder;                       ///< N, per FEM node
+  Vertices liver;                             ///< N, per liver surface vertex
   std::vector<LiverPointForce> liver_points;  ///< N, one per alive spring, for BEM tractions
 };
 TissueNodalForces ComputeTissueForces(const ConnectiveTissue& tissue, const TetrahedralMesh& gallbladder,
-                                      const Vertices& gallbladder_velocities,
-                                      const TriangleMesh& liver, const Vertices& liver_velocities,
-                                      const SpringMaterial& material);
+                                      const Vertices& gallbladder_velocities, const TriangleMesh& liver,
+                                      const Vertices& liver_velocities, const SpringMaterial& material);
 
 }  // namespace vesica::physics

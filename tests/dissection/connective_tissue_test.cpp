@@ -34,9 +34,7 @@ TriangleMesh LiverPlane() {
 
 TetrahedralMesh GallbladderBox() { return MakeBoxTetMesh({0.04, 0.04, 0.02}, {4, 4, 2}); }
 
-ConnectiveTissue MakeTissue() {
-  return CreateConnectiveTissue(LiverPlane(), GallbladderBox(), {{0, 0, 1}, 5e-3});
-}
+ConnectiveTissue MakeTissue() { return CreateConnectiveTissue(LiverPlane(), GallbladderBox(), {{0, 0, 1}, 5e-3}); }
 
 TEST(ConnectiveTissueTest, SpringsGrowFromTheTopVerticesUnderTheLiver) {
   const TetrahedralMesh gb = GallbladderBox();
@@ -78,8 +76,8 @@ TEST(ConnectiveTissueTest, MembraneJoinsSpringsOnSharedSurfaceEdges) {
   std::vector<std::set<int>> neighbours(t.springs.size());
   for (int m = 0; m < t.membrane.triangles.rows(); ++m) {
     const int i = t.membrane.springs(m, 0), j = t.membrane.springs(m, 1);
-    const double gap = (gb.vertices.row(t.springs[i].gallbladder_vertex) -
-                        gb.vertices.row(t.springs[j].gallbladder_vertex)).norm();
+    const double gap =
+        (gb.vertices.row(t.springs[i].gallbladder_vertex) - gb.vertices.row(t.springs[j].gallbladder_vertex)).norm();
     EXPECT_LE(gap, 0.01 * std::sqrt(2.0) + 1e-12);
     std::set<int> corners_springs;
     for (int k = 0; k < 3; ++k) corners_springs.insert(t.membrane.triangles(m, k) / 2);
@@ -141,8 +139,7 @@ TEST(ConnectiveTissueTest, RejectsBadInput) {
   EXPECT_THROW(CutSpring(t, 15), std::out_of_range);
   const TetrahedralMesh gb = GallbladderBox();
   const TriangleMesh liver = LiverPlane();
-  EXPECT_THROW(ComputeTissueForces(t, gb, Vertices::Zero(2, 3), liver,
-                                   Vertices::Zero(liver.num_vertices(), 3), {}),
+  EXPECT_THROW(ComputeTissueForces(t, gb, Vertices::Zero(2, 3), liver, Vertices::Zero(liver.num_vertices(), 3), {}),
                std::invalid_argument);
 }
 

@@ -11,9 +11,7 @@ namespace vesica::physics {
 namespace {
 
 // Unit-ish box surface [0,0.04]x[0,0.04]x[0,0.02] m: flat faces give exact analytic hits.
-TriangleMesh BoxSurface() {
-  return ExtractBoundary(MakeBoxTetMesh({0.04, 0.04, 0.02}, {4, 4, 2})).surface;
-}
+TriangleMesh BoxSurface() { return ExtractBoundary(MakeBoxTetMesh({0.04, 0.04, 0.02}, {4, 4, 2})).surface; }
 
 Eigen::Vector3d Reconstruct(const TriangleMesh& m, const SurfaceHit& h) {
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
@@ -111,8 +109,7 @@ TEST(SurfaceRayCasterTest, RejectsBadInput) {
   const int id = caster.AddSurface(BoxSurface());
   EXPECT_THROW(caster.UpdateVertices(id, Vertices::Zero(3, 3)), std::invalid_argument);
   EXPECT_THROW(caster.UpdateVertices(id + 1, Vertices::Zero(3, 3)), std::out_of_range);
-  EXPECT_THROW(caster.FirstHit(id, {Eigen::Vector3d::Constant(NAN), Eigen::Vector3d::Zero()}),
-               std::invalid_argument);
+  EXPECT_THROW(caster.FirstHit(id, {Eigen::Vector3d::Constant(NAN), Eigen::Vector3d::Zero()}), std::invalid_argument);
 }
 
 }  // namespace
