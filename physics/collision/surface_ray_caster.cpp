@@ -1,6 +1,7 @@
 #include "physics/collision/surface_ray_caster.h"
 
 #include <BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h>
+#include <BulletCollision/CollisionShapes/btOptimizedBvh.h>
 #include <BulletCollision/CollisionShapes/btTriangleCallback.h>
 #include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
 
@@ -109,7 +110,9 @@ void SurfaceRayCaster::UpdateVertices(int id, const Vertices& vertices) {
   s.mesh.vertices = vertices;
   s.CopyPositions();
   const auto [lo, hi] = s.Aabb();
-  s.shape->refitTree(lo, hi);  // refit, not rebuild: topology is unchanged
+  // Refit the BVH only: refitTree would also recompute the shape's local AABB by six support
+  // passes over every triangle, which ray casts through performRaycast never read.
+  s.shape->getOptimizedBvh()->refit(s.mesh_interface.get(), lo, hi);
 }
 
 namespace {
