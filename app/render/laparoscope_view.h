@@ -1,12 +1,16 @@
 #pragma once
 // The laparoscope's view of the scene in VTK: organs shaded with mottled vertex colours and a
 // wet specular look under the scope's headlight, the abdominal wall hidden or translucent, and
-// the instruments as shafts through their trocars. VTK stays inside the .cpp (pimpl).
+// the instruments as shafts through their trocars. Update() shows one physics snapshot: the
+// deformed organs, burn darkening, the connective-tissue membrane, smoke and the instruments'
+// jaws. VTK stays inside the .cpp (pimpl).
 
 #include <filesystem>
 #include <memory>
 #include <vector>
 
+#include "app/render/render_colours.h"
+#include "app/render/render_frame.h"
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario.h"
 #include "physics/instrument/instrument_pose.h"
@@ -16,12 +20,10 @@ class vtkRenderWindow;
 
 namespace vesica::app {
 
-/// Colours the view paints organs with (linear RGB 0..1, before lighting); tests classify pixels by them.
-inline constexpr double kLiverRgb[3] = {0.55, 0.17, 0.13};
-inline constexpr double kGallbladderRgb[3] = {0.30, 0.50, 0.22};
-
 class LaparoscopeView {
  public:
+  /// The gallbladder is drawn from physics::ExtractBoundary(meshes.gallbladder).surface, the
+  /// numbering RenderFrame::gallbladder_vertices uses.
   LaparoscopeView(const Scenario& scenario, const SceneMeshes& meshes);
   ~LaparoscopeView();
   LaparoscopeView(const LaparoscopeView&) = delete;
@@ -32,6 +34,14 @@ class LaparoscopeView {
   /// Initial instrument poses: each shaft aimed from its trocar at the laparoscope's target.
   const std::vector<physics::InstrumentPose>& poses() const;
   void SetInstrumentPose(std::size_t instrument, const physics::InstrumentPose& pose);
+
+  /// The sizes Update() expects (liver, gallbladder boundary, instruments).
+  const RenderFrameSizes& frame_sizes() const;
+
+  /// Shows one snapshot (takes effect at the next Render of the window). Throws
+  /// std::invalid_argument naming the field and sizes when the frame does not fit the scene
+  /// (ValidateRenderFrame); the view is then left as it was.
+  void Update(const RenderFrame& frame);
 
  private:
   struct Impl;

@@ -1,0 +1,132 @@
+#include "app/render/organ_surface.h"
+
+#include <vtkActor.h>
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <cmath>
+
+#include "app/render/burn_colours.h"
+#include "app/render/vertex_normals.h"
+
+namespace vesica::app {
+
+namespace {
+
+// Smooth, deterministic mottling so organs do not look like plastic: a few incommensurate waves.
+double Mottle(const Eigen::Vector3d& p) {
+  const double k = 180.0;  // ~3.5 cm wavelength in metres^-1
+  return 0.5 * std::sin(k * p.x() + 1.3) * std::sin(0.7 * k * p.y() + 0.4) +
+         0.5 * std::sin(1.9 * k * p.z() + 2.1 * std::sin(0.5 * k * p.x()));
+}
+
+}  // namespace
+
+OrganSurface::OrganSurface(const physics::TriangleMesh& rest, const double rgb[3], double mottle_amplitude,
+                           double opacity)
+    : rest_(rest), rgb_{rgb[0], rgb[1], rgb[2]} {
+  shade_.resize(rest_.num_vertices());
+  for (int v = 0; v < rest_.num_vertices(); ++v)
+    shade_[v] = 1.0 + mottle_amplitude * Mottle(rest_.vertices.row(v).transpose());
+
+  const vtkIdType n_corners = 3 * static_cast<vtkIdType>(rest_.num_triangles());
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n_corners);
+  auto normals = vtkSmartPointer<vtkFloatArray>::New();
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(n_corners);
+  auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  colours->SetName("colour");
+  colours->SetNumberOfComponents(3);
+  colours->SetNumberOfTuples(n_corners);
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  for (vtkIdType f = 0; f < rest_.num_triangles(); ++f) {
+    const vtkIdType ids[3] = {3 * f, 3 * f + 1, 3 * f + 2};
+    cells->InsertNextCell(3, ids);
+  }
+  poly_ = vtkSmartPointer<vtkPolyData>::New();
+  poly_->SetPoints(points);
+  poly_->SetPolys(cells);
+  poly_->GetPointData()->SetNormals(normals);
+  poly_->GetPointData()->SetScalars(colours);
+  WriteGeometry(rest_.vertices);
+  burn_.assign(rest_.num_triangles(), 1.0f);  // forces the first SetBurn to write every colour
+  SetBurn({});
+
+  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  mapper->SetInputData(poly_);
+  mapper->SetScalarModeToUsePointData();
+  mapper->SetColorModeToDirectScalars();
+  actor_ = vtkSmartPointer<vtkActor>::New();
+  actor_->SetMapper(mapper);
+  auto* prop = actor_->GetProperty();
+  prop->SetInterpolationToPhong();
+  prop->SetAmbient(0.12);
+  prop->SetDiffuse(0.85);
+  prop->SetSpecular(0.35);  // wet serosa
+  prop->SetSpecularPower(40);
+  prop->SetOpacity(opacity);
+}
+
+void OrganSurface::WriteGeometry(const physics::Vertices& vertices) {
+  const physics::Vertices normals = VertexNormals(vertices, rest_.triangles);
+  auto* xyz = vtkDoubleArray::SafeDownCast(poly_->GetPoints()->GetData())->GetPointer(0);
+  auto* nrm = vtkFloatArray::SafeDownCast(poly_->GetPointData()->GetNormals())->GetPointer(0);
+  for (int f = 0; f < rest_.num_triangles(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int v = rest_.triangles(f, k);
+      const std::size_t corner = 3 * (3 * static_cast<std::size_t>(f) + k);
+      for (int c = 0; c < 3; ++c) {
+        xyz[corner + c] = vertices(v, c);
+        nrm[corner + c] = static_cast<float>(normals(v, c));
+      }
+    }
+  poly_->GetPoints()->Modified();
+  poly_->GetPointData()->GetNormals()->Modified();
+  poly_->Modified();
+}
+
+void OrganSurface::SetVertices(const physics::Vertices& vertices) {
+  if (vertices.rows() == 0) {
+    if (!deformed_) return;  // already at rest: nothing to upload
+    WriteGeometry(rest_.vertices);
+    deformed_ = false;
+    return;
+  }
+  WriteGeometry(vertices);
+  deformed_ = true;
+}
+
+void OrganSurface::SetBurn(const std::vector<float>& burn) {
+  auto* colours = vtkUnsignedCharArray::SafeDownCast(poly_->GetPointData()->GetScalars());
+  auto* rgb = colours->GetPointer(0);
+  bool changed = false;
+  for (int f = 0; f < rest_.num_triangles(); ++f) {
+    const float b = burn.empty() ? 0.0f : Unit(burn[f]);
+    if (b == burn_[f]) continue;  // only re-colour triangles whose burn changed
+    burn_[f] = b;
+    changed = true;
+    for (int k = 0; k < 3; ++k) {
+      const auto c = BurnedColour(rgb_, shade_[rest_.triangles(f, k)], b);
+      const std::size_t corner = 3 * (3 * static_cast<std::size_t>(f) + k);
+      rgb[corner] = c[0];
+      rgb[corner + 1] = c[1];
+      rgb[corner + 2] = c[2];
+    }
+  }
+  if (changed) {
+    colours->Modified();
+    poly_->Modified();
+  }
+}
+
+}  // namespace vesica::app

@@ -1,0 +1,46 @@
+#pragma once
+// A deforming organ surface in VTK (internal to app/render): moves with the physics' vertices,
+// relit with recomputed normals, mottled tissue colour darkened per triangle by its burn.
+//
+// The triangles are drawn unshared (3 points per triangle, a "soup"): colour can then change
+// sharply at a triangle's edge (a burn is per triangle) while the mottle and the normals, taken
+// from the shared vertices, stay smooth across edges. The liver has 2k triangles: 6k points.
+
+#include <vector>
+
+#include <vtkSmartPointer.h>
+
+#include "physics/mesh/triangle_mesh.h"
+
+class vtkActor;
+class vtkPolyData;
+
+namespace vesica::app {
+
+class OrganSurface {
+ public:
+  /// @param rest  the surface at rest (its numbering is the frame's)
+  /// @param rgb   tissue colour 0..1; @param mottle_amplitude relative shade variation
+  OrganSurface(const physics::TriangleMesh& rest, const double rgb[3], double mottle_amplitude, double opacity);
+  vtkActor* actor() const { return actor_; }
+  int num_vertices() const { return rest_.num_vertices(); }
+  int num_triangles() const { return rest_.num_triangles(); }
+
+  /// #V by 3 current positions, or empty for the rest shape. Sizes are checked by the caller.
+  void SetVertices(const physics::Vertices& vertices);
+  /// #F burn levels, or empty for unburned.
+  void SetBurn(const std::vector<float>& burn);
+
+ private:
+  void WriteGeometry(const physics::Vertices& vertices);
+
+  physics::TriangleMesh rest_;
+  double rgb_[3];
+  std::vector<double> shade_;      // per vertex, from the rest position (mottle sticks to tissue)
+  std::vector<float> burn_;        // what the colours show now
+  bool deformed_ = false;
+  vtkSmartPointer<vtkPolyData> poly_;
+  vtkSmartPointer<vtkActor> actor_;
+};
+
+}  // namespace vesica::app

@@ -1,0 +1,21 @@
+#pragma once
+// Colours the laparoscope view paints with (linear RGB 0..1, before lighting). Tests classify
+// pixels by them, so they live apart from VTK.
+
+namespace vesica::app {
+
+inline constexpr double kLiverRgb[3] = {0.55, 0.17, 0.13};
+inline constexpr double kGallbladderRgb[3] = {0.30, 0.50, 0.22};
+/// Burned tissue at burn level 1: charred, near-black brown. Level b mixes (1-b) tissue + b char.
+inline constexpr double kCharRgb[3] = {0.07, 0.045, 0.03};
+/// Connective-tissue membrane: thin, whitish yellow, translucent (kMembraneAlpha at opacity 1).
+inline constexpr double kMembraneRgb[3] = {0.92, 0.86, 0.62};
+inline constexpr double kMembraneAlpha = 0.6;
+/// Cautery smoke: greyish white puffs, alpha-blended.
+inline constexpr double kSmokeRgb[3] = {0.86, 0.86, 0.84};
+/// Grasper jaws while a grasp has slipped: amber-red warning.
+inline constexpr double kSlipRgb[3] = {1.0, 0.35, 0.0};
+/// Cautery hook tip while cutting: glowing orange-white.
+inline constexpr double kCauteryGlowRgb[3] = {1.0, 0.75, 0.35};
+
+}  // namespace vesica::app
