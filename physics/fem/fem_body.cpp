@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "physics/fem/attachment_springs.h"
 #include "physics/fem/cholmod_solver.h"
 #include "physics/fem/elastic_forces.h"
 #include "physics/fem/fem_error.h"
@@ -16,17 +17,21 @@ struct FemBody::Workspace {
   Eigen::VectorXd system_values;   // S with Dirichlet rows/columns replaced by identity
   Eigen::VectorXd internal_force;
   double elastic_energy = 0.0;
-  bool system_assembled = false;   // S exists (for the last step, or the current state)
+  bool system_assembled = false;  // S exists (for the last step, or the current state)
   bool acceleration_valid = false;
-  Eigen::VectorXd last_increment;  // PCG warm start
+  bool linear_system_built = false;  // a linear body's S is built once (and after attachment changes)
+  AttachmentSprings attachment;
+  Eigen::VectorXd last_increment;          // PCG warm start
   std::vector<Eigen::Vector4d> rotations;  // corotational warm start, per tet
   BlockJacobiPreconditioner jacobi;
   CholmodSolver cholmod;
   bool factor_matches_system = false;
+  bool force_refactor = false;  // attachment changed: refactorise even between refreshes
   int steps_since_factor = 0;
 };
 
-FemBody::FemBody(std::shared_ptr<const FemModel> model) : model_(std::move(model)), work_(std::make_unique<Workspace>()) {
+FemBody::FemBody(std::shared_ptr<const FemModel> model)
+    : model_(std::move(model)), work_(std::make_unique<Workspace>()) {
   if (!model_) throw FemError("FemBody: null model");
   const int n = model_->num_dofs();
   state_.displacement_m.setZero(n);
@@ -70,6 +75,18 @@ void FemBody::SetState(const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
   work_->system_assembled = false;
 }
 
+void FemBody::SetAttachmentStiffness(const Eigen::VectorXd& stiffness, const Eigen::VectorXd& damping) {
+  Workspace& w = *work_;
+  AttachmentSprings next = MakeAttachmentSprings(model_->settings.body_name, model_->num_nodes(), stiffness, damping);
+  if (!next.any && !w.attachment.any) return;  // zero before and after: nothing to rebuild
+  w.attachment = std::move(next);
+  // S changes: rebuild it at the next step (a linear body refactorises once, then keeps it).
+  w.system_assembled = false;
+  w.linear_system_built = false;
+  w.factor_matches_system = false;
+  w.force_refactor = true;
+}
+
 void FemBody::DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   const FemSettings& s = model_->settings;
   y.setZero(x.size());
@@ -87,9 +104,10 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
   Workspace& w = *work_;
   const bool linear = s.element_model == ElementModel::kLinear;
   // A linear body's K never changes: copy it once, then only f = K u is needed.
-  w.elastic_energy = ComputeElasticForces(m, u, (linear && w.system_assembled) ? nullptr : &w.tangent_values,
+  w.elastic_energy = ComputeElasticForces(m, u, (linear && w.linear_system_built) ? nullptr : &w.tangent_values,
                                           &w.internal_force, &w.rotations);
-  if (linear && w.system_assembled) return;
+  w.system_assembled = true;
+  if (linear && w.linear_system_built) return;
   const SystemCoefficients c = IntegratorCoefficients(s);
   const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;
   const double stiffness_scale = 1.0 + c.damping * s.rayleigh_stiffness_s;
@@ -97,11 +115,18 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
   if (m.uses_consistent_mass()) {
     w.system_values += mass_scale * m.consistent_mass_values;
   } else {
-    for (int i = 0; i < m.num_dofs(); ++i) w.system_values[m.pattern.diagonal_slot[i]] += mass_scale * m.lumped_mass_kg[i];
+    for (int i = 0; i < m.num_dofs(); ++i)
+      w.system_values[m.pattern.diagonal_slot[i]] += mass_scale * m.lumped_mass_kg[i];
+  }
+  if (w.attachment.any) {
+    // Spring increments like K du and D v+: k + c_D d on the diagonal.
+    const Eigen::VectorXd& k = w.attachment.stiffness_N_per_m;
+    const Eigen::VectorXd& d = w.attachment.damping_Ns_per_m;
+    for (int i = 0; i < m.num_dofs(); ++i) w.system_values[m.pattern.diagonal_slot[i]] += k[i] + c.damping * d[i];
   }
   for (int k : m.constrained_slots) w.system_values[k] = 0.0;
   for (int i : m.fixed_dofs) w.system_values[m.pattern.diagonal_slot[i]] = 1.0;
-  w.system_assembled = true;
+  w.linear_system_built = linear;
   w.factor_matches_system = false;
 }
 
@@ -113,10 +138,11 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
   PcgResult r;
   if (s.solver == LinearSolverKind::kCholmod) {
     const bool linear = s.element_model == ElementModel::kLinear;
-    const bool refresh = !w.cholmod.factorized() ||
+    const bool refresh = !w.cholmod.factorized() || w.force_refactor ||
                          (!linear && !w.factor_matches_system && w.steps_since_factor + 1 >= s.cholmod_refresh_steps);
     if (refresh) {
       if (!w.cholmod.Factorize(m.pattern, w.system_values)) return false;
+      w.force_refactor = false;
       w.factor_matches_system = true;
       w.steps_since_factor = 0;
     } else if (!linear && !w.factor_matches_system) {
@@ -129,15 +155,15 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
     }
     // Stale factor of a corotational body: it preconditions PCG on the current system.
     du = w.last_increment;
-    r = SolvePcg(m.pattern, w.system_values, rhs, du,
-                 [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { w.cholmod.Solve(res, z); }, tolerance,
-                 max_iterations);
+    r = SolvePcg(
+        m.pattern, w.system_values, rhs, du,
+        [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { w.cholmod.Solve(res, z); }, tolerance, max_iterations);
   } else {
     w.jacobi.Compute(m.pattern, w.system_values);
     du = w.last_increment;
-    r = SolvePcg(m.pattern, w.system_values, rhs, du,
-                 [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { w.jacobi.Apply(res, z); }, tolerance,
-                 max_iterations);
+    r = SolvePcg(
+        m.pattern, w.system_values, rhs, du,
+        [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { w.jacobi.Apply(res, z); }, tolerance, max_iterations);
   }
   if (report) report->solver_iterations = r.iterations, report->relative_residual = r.relative_residual;
   return du.allFinite();
@@ -165,8 +191,8 @@ StepReport FemBody::Step() {
       BlockJacobiPreconditioner pre;
       pre.Compute(m.pattern, mass);
       Eigen::VectorXd a = Eigen::VectorXd::Zero(net.size());
-      SolvePcg(m.pattern, mass, net, a, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { pre.Apply(r, z); },
-               1e-14, 200);
+      SolvePcg(
+          m.pattern, mass, net, a, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { pre.Apply(r, z); }, 1e-14, 200);
       state_.acceleration_m_per_s2 = a;
     } else {
       state_.acceleration_m_per_s2 = net.cwiseQuotient(m.lumped_mass_kg);
@@ -179,6 +205,10 @@ StepReport FemBody::Step() {
   IntegratorDrives(s, v, a, mass_drive, damping_drive);
   DampingTimes(damping_drive, damping_term);
   Eigen::VectorXd rhs = f_ext - w.internal_force + m.MassTimes(mass_drive) + damping_term;
+  if (w.attachment.any) {
+    // f_ext holds the springs' force at v; the step adds -d (v+ - v) = -d (c_D du - drive - v).
+    rhs += w.attachment.damping_Ns_per_m.cwiseProduct(damping_drive + v);
+  }
   for (int i : m.fixed_dofs) rhs[i] = 0.0;
 
   const double energy_before = KineticEnergy() + w.elastic_energy;
@@ -246,8 +276,8 @@ PointCompliance FemBody::Compliance(const std::vector<TetLocation>& points) {
     const TetLocation& loc = points[p];
     if (loc.tet < 0 || loc.tet >= m.rest_mesh.num_tets() || !loc.weights.allFinite()) {
       std::ostringstream os;
-      os << m.settings.body_name << ": constrained point " << p << " is bound to tet " << loc.tet
-         << " (mesh has " << m.rest_mesh.num_tets() << " tets) or has non-finite weights";
+      os << m.settings.body_name << ": constrained point " << p << " is bound to tet " << loc.tet << " (mesh has "
+         << m.rest_mesh.num_tets() << " tets) or has non-finite weights";
       throw FemError(os.str());
     }
     for (int k = 0; k < 4; ++k)

@@ -2,11 +2,10 @@
 // A deformable tetrahedral body advanced by implicit steps: owns its per-step state and solver
 // workspace, shares the const FemModel. Used by the scene (gallbladder), needle and registration.
 
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "physics/fem/fem_model.h"
 #include "physics/fem/fem_state.h"
@@ -43,6 +42,14 @@ class FemBody {
   void SetExternalForces(const Eigen::VectorXd& force_N);
   /// Replaces u and v (3n each; a is recomputed at the next Newmark step). Throws FemError.
   void SetState(const Eigen::VectorXd& displacement_m, const Eigen::VectorXd& velocity_m_per_s);
+
+  /// Stiffness (N/m) and damping (N s/m) per dof (3n each, >= 0) of springs from this body to anchors
+  /// outside it (connective tissue to the liver), lumped onto the nodes (a point with barycentric
+  /// weights w on a spring k contributes k*w_i to each of its nodes: diag(w) >= w w^T, so lumping is
+  /// stable). They enter the step's system matrix and compliance like K and D do; the springs' forces
+  /// at the start of the step still come in through SetExternalForces. Throws FemError on wrong size,
+  /// negative or non-finite entries. Zero vectors (the default) change nothing.
+  void SetAttachmentStiffness(const Eigen::VectorXd& stiffness_N_per_m, const Eigen::VectorXd& damping_Ns_per_m);
 
   /// One implicit step of settings.time_step_s. Never lets a non-finite value into the state.
   StepReport Step();
