@@ -119,7 +119,7 @@ class Parser {
   }
 
   void RequireTerminated(const Line& line, std::optional<double> time_s) const {
-    if (!line.terminated) Fail(line.number, time_s, "file ends inside this line (no newline): truncated" + LastGood());
+    if (!line.terminated) Fail(line.number, time_s, "no newline at the end of this line: file truncated" + LastGood());
   }
 
   std::string LastGood() const {

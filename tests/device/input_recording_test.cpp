@@ -133,6 +133,26 @@ TEST(InputRecordingTest, ParsesTheDocumentedExample) {
   EXPECT_TRUE(rec.frames[2].instruments[kLeft].pedal);
 }
 
+// The example in docs/recording.md is a valid recording (keeps the page honest).
+TEST(InputRecordingTest, DocsExampleParses) {
+  std::ifstream doc(std::string(VESICA_SOURCE_DIR) + "/docs/recording.md");
+  ASSERT_TRUE(doc) << "docs/recording.md not found";
+  std::string line, example;
+  bool inside = false;
+  while (std::getline(doc, line)) {
+    if (line == "    # vesica input recording v1") inside = true;
+    if (inside && line.rfind("    ", 0) != 0) break;
+    if (inside) example += line.substr(4) + "\n";
+  }
+  const InputRecording rec = ParseInputRecording(example, "docs/recording.md");
+  EXPECT_EQ(rec.scenario_name, "cholecystectomy");
+  ASSERT_EQ(rec.frames.size(), 4u);
+  EXPECT_EQ(rec.frames[1].time_s, 0.005);
+  EXPECT_EQ(rec.frames[1].instruments[kLeft].pose.jaw_angle_rad, 0.15);
+  EXPECT_TRUE(rec.frames[1].instruments[kRight].pedal);
+  EXPECT_FALSE(rec.frames[3].instruments[kRight].pedal);
+}
+
 TEST(InputRecordingTest, FormatIsTheDocumentedText) {
   const InputRecording rec = ParseInputRecording(ValidText(), "rec.csv");
   EXPECT_EQ(FormatInputRecording(rec), ValidText());
