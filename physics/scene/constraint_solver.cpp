@@ -1,0 +1,65 @@
+#include "physics/scene/constraint_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace vesica::physics {
+
+namespace {
+void Check(const ConstraintProblem& p) {
+  const Eigen::Index m = p.gap.size();
+  if (p.delassus.rows() != m || p.delassus.cols() != m || p.soft_compliance.size() != m ||
+      static_cast<Eigen::Index>(p.kinds.size()) != m)
+    throw std::invalid_argument("SolveConstraints: W is " + std::to_string(p.delassus.rows()) + "x" +
+                                std::to_string(p.delassus.cols()) + ", W_soft has " +
+                                std::to_string(p.soft_compliance.size()) + ", kinds " + std::to_string(p.kinds.size()) +
+                                ", gaps " + std::to_string(m) + " entries");
+  if (!p.delassus.allFinite() || !p.gap.allFinite() || !p.soft_compliance.allFinite())
+    throw std::invalid_argument("SolveConstraints: non-finite W, W_soft or gap");
+  for (Eigen::Index i = 0; i < m; ++i) {
+    if (p.soft_compliance[i] < 0.0)
+      throw std::invalid_argument("SolveConstraints: row " + std::to_string(i) + " has negative soft compliance");
+    if (!(p.delassus(i, i) + p.soft_compliance[i] > 0.0))
+      throw std::invalid_argument("SolveConstraints: row " + std::to_string(i) +
+                                  " has no compliance (W_ii + W_soft_ii <= 0): nothing can move to satisfy it");
+  }
+}
+
+// Violation of row i's condition at the current lambda (0 when satisfied).
+double RowError(ConstraintKind kind, double lambda, double residual) {
+  if (kind == ConstraintKind::kBilateral) return std::abs(residual);
+  // Complementarity: a pushing row must close its gap exactly; an idle one must not penetrate.
+  return lambda > 0.0 ? std::abs(residual) : std::max(0.0, -residual);
+}
+}  // namespace
+
+ConstraintSolution SolveConstraints(const ConstraintProblem& p, const ConstraintSolverSettings& settings) {
+  Check(p);
+  const Eigen::Index m = p.gap.size();
+  ConstraintSolution out;
+  out.lambda.setZero(m);
+  if (m == 0) return out;
+  Eigen::MatrixXd a = p.delassus;
+  a.diagonal() += p.soft_compliance;
+  for (int sweep = 1; sweep <= settings.max_iterations; ++sweep) {
+    for (Eigen::Index i = 0; i < m; ++i) {
+      // Row residual without row i's own contribution, then the row's exact solution, projected.
+      const double others = a.row(i).dot(out.lambda) - a(i, i) * out.lambda[i] + p.gap[i];
+      double li = -others / a(i, i);
+      if (p.kinds[static_cast<size_t>(i)] == ConstraintKind::kUnilateral) li = std::max(0.0, li);
+      out.lambda[i] = li;
+    }
+    out.iterations = sweep;
+    const Eigen::VectorXd residual = a * out.lambda + p.gap;
+    out.max_error_m = 0.0;
+    for (Eigen::Index i = 0; i < m; ++i)
+      out.max_error_m =
+          std::max(out.max_error_m, RowError(p.kinds[static_cast<size_t>(i)], out.lambda[i], residual[i]));
+    if (out.max_error_m <= settings.tolerance_m) break;
+  }
+  return out;
+}
+
+}  // namespace vesica::physics

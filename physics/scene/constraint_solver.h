@@ -1,0 +1,41 @@
+#pragma once
+// Lagrange-multiplier constraints with compliance (registration paper eqs. 4 and 6):
+//   (W + W_soft) lambda + delta = 0          bilateral rows (grasps)
+//   0 <= lambda  _|_  (W + W_soft) lambda + delta >= 0   unilateral rows (contacts)
+// W = J C J^T is the Delassus operator (m/N) built from the bodies' compliances, W_soft a
+// diagonal of per-row compliances (a grasp that gives), delta the gap (m) each row has before
+// the constraint forces act: negative is penetration (unilateral) or violation (bilateral).
+// A single unilateral row held only by a spring k has W = 1/k, so lambda = max(0, -k delta).
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace vesica::physics {
+
+enum class ConstraintKind { kUnilateral, kBilateral };
+
+struct ConstraintProblem {
+  Eigen::MatrixXd delassus;         ///< W, m x m, symmetric positive semi-definite, m/N
+  Eigen::VectorXd soft_compliance;  ///< W_soft diagonal, m entries >= 0, m/N
+  Eigen::VectorXd gap;              ///< delta, m entries, metres
+  std::vector<ConstraintKind> kinds;
+};
+
+struct ConstraintSolverSettings {
+  int max_iterations = 200;    ///< projected Gauss-Seidel sweeps
+  double tolerance_m = 1e-12;  ///< stop when no row's complementarity error exceeds this
+};
+
+struct ConstraintSolution {
+  Eigen::VectorXd lambda;  ///< N, one per row (>= 0 on unilateral rows)
+  int iterations = 0;
+  double max_error_m = 0;  ///< largest remaining violation of the row conditions, metres
+};
+
+/// Projected Gauss-Seidel on the rows (exact after one sweep for a single row; bilateral-only
+/// problems converge like Gauss-Seidel on an SPD matrix). Throws std::invalid_argument on
+/// mismatched sizes, non-finite entries, negative soft compliance or a row whose W + W_soft
+/// diagonal is not positive (it could not be solved for).
+ConstraintSolution SolveConstraints(const ConstraintProblem& problem, const ConstraintSolverSettings& settings = {});
+
+}  // namespace vesica::physics

@@ -1,0 +1,414 @@
+#include "physics/scene/dissection_scene.h"
+
+#include <Eigen/Cholesky>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "physics/mesh/barycentric.h"
+#include "physics/tissue/spring_forces.h"
+
+namespace vesica::physics {
+
+// One scalar constraint row: tool point q, tissue point p (barycentric on three nodes of one
+// body), direction d. Gap delta = d . (q - p); a force lambda pushes the tissue by -d lambda and
+// the tool by +d lambda, so delta' = delta + W lambda with W = d^T C d (constraint_solver.h).
+struct DissectionScene::Row {
+  bool liver = false;          // body: liver (BEM) or gallbladder (FEM)
+  std::array<int, 3> nodes{};  // liver surface vertices or gallbladder volume nodes
+  Eigen::Vector3d weights = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+  double gap = 0;
+  ConstraintKind kind = ConstraintKind::kUnilateral;
+  double soft = 0;
+  int instrument = 0;
+  int grasp_point = -1;  // index in grasp_.points(), or -1 for a contact row
+};
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double Microseconds(Clock::duration d) { return std::chrono::duration<double, std::micro>(d).count(); }
+
+Eigen::Map<const Vertices> AsVertices(const Eigen::VectorXd& stacked) {
+  return {stacked.data(), stacked.size() / 3, 3};
+}
+
+void CheckPose(const InstrumentPose& p, int i) {
+  const bool finite = std::isfinite(p.yaw_rad) && std::isfinite(p.pitch_rad) && std::isfinite(p.roll_rad) &&
+                      std::isfinite(p.insertion_m) && std::isfinite(p.jaw_angle_rad);
+  if (!finite || p.insertion_m < 0.0)
+    throw std::invalid_argument("DissectionScene::Step: instrument " + std::to_string(i) +
+                                " pose is not finite or has negative insertion");
+}
+}  // namespace
+
+DissectionScene::DissectionScene(std::shared_ptr<const DissectionModel> model)
+    : model_(std::move(model)),
+      gallbladder_(model_->gallbladder),
+      gallbladder_compliance_(model_->gallbladder),
+      liver_solver_(*model_->liver),
+      tissue_(model_->tissue),
+      grasp_(model_->settings.grasp) {
+  liver_current_ = model_->liver->rest_surface;
+  liver_velocity_ = Vertices::Zero(liver_current_.num_vertices(), 3);
+  gallbladder_current_ = model_->gallbladder->rest_mesh;
+  liver_surface_id_ = caster_.AddSurface(liver_current_);
+  gallbladder_surface_id_ = caster_.AddSurface(model_->gallbladder_boundary.surface);
+  for (int i = 0; i < 2; ++i)
+    tips_[static_cast<size_t>(i)] = model_->instruments[static_cast<size_t>(i)].p_RemoteCentre_W;
+  UpdateAttachments();
+}
+DissectionScene::~DissectionScene() = default;
+
+void DissectionScene::UpdateAttachments() {
+  const FemModel& m = *model_->gallbladder;
+  Eigen::VectorXd k = Eigen::VectorXd::Zero(m.num_dofs()), c = Eigen::VectorXd::Zero(m.num_dofs());
+  const SpringMaterial& spring = model_->settings.springs;
+  for (const TissueSpring& s : tissue_.springs) {
+    if (!s.alive) continue;
+    for (int corner = 0; corner < 4; ++corner) {
+      const int node = m.rest_mesh.tets(s.gallbladder_tet, corner);
+      const double w = std::abs(s.gallbladder_weights[corner]);  // lumped: k w_i on each node (diag(w) >= w w^T)
+      k.segment<3>(3 * node).array() += spring.stiffness * w;
+      c.segment<3>(3 * node).array() += spring.damping * w;
+    }
+  }
+  gallbladder_.SetAttachmentStiffness(k, c);
+  gallbladder_compliance_.SetAttachments(k, c);
+  attachments_changed_ = false;
+  steps_since_compliance_ = 0;
+}
+
+void DissectionScene::CutSpring(int index) {
+  physics::CutSpring(tissue_, index);
+  attachments_changed_ = true;
+}
+
+Vertices DissectionScene::gallbladder_surface_positions() const {
+  const Eigen::VectorXi& map = model_->gallbladder_boundary.surface_to_volume;
+  Vertices out(map.size(), 3);
+  for (Eigen::Index i = 0; i < map.size(); ++i) out.row(i) = gallbladder_current_.vertices.row(map[i]);
+  return out;
+}
+
+Vertices DissectionScene::membrane_points() const {
+  Vertices out(2 * static_cast<Eigen::Index>(tissue_.springs.size()), 3);
+  for (size_t s = 0; s < tissue_.springs.size(); ++s) {
+    const TissueSpring& spring = tissue_.springs[s];
+    out.row(2 * static_cast<Eigen::Index>(s)) =
+        GallbladderEnd(spring, gallbladder_current_.vertices, gallbladder_current_.tets).transpose();
+    out.row(2 * static_cast<Eigen::Index>(s) + 1) =
+        LiverEnd(spring, liver_current_.vertices, liver_current_.triangles).transpose();
+  }
+  return out;
+}
+
+double DissectionScene::Energy() const {
+  double springs = 0;
+  for (const TissueSpring& s : tissue_.springs) {
+    if (!s.alive) continue;
+    const double stretch = (LiverEnd(s, liver_current_.vertices, liver_current_.triangles) -
+                            GallbladderEnd(s, gallbladder_current_.vertices, gallbladder_current_.tets))
+                               .norm() -
+                           s.rest_length;
+    springs += 0.5 * model_->settings.springs.stiffness * stretch * stretch;
+  }
+  return gallbladder_.KineticEnergy() + gallbladder_.ElasticEnergy() + springs;
+}
+
+// d_a^T C(p_a, p_b) d_b for two rows on the same body; zero across bodies (they only interact
+// through the springs, which the step treats outside the constraint solve).
+Eigen::Matrix3d DissectionScene::BlockCompliance(const Row& a, const Row& b) {
+  Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+  if (a.liver != b.liver) return c;
+  for (int j = 0; j < 3; ++j) {
+    if (b.weights[j] == 0.0) continue;
+    if (a.liver) {
+      const BemModel& liver = *model_->liver;
+      const int fj = liver.layout.free_index(b.nodes[static_cast<size_t>(j)]);
+      if (fj < 0) continue;  // a force on the fixed region moves nothing
+      for (int i = 0; i < 3; ++i) {
+        const int node_i = a.nodes[static_cast<size_t>(i)];
+        if (a.weights[i] == 0.0 || liver.layout.free_index(node_i) < 0) continue;
+        c += a.weights[i] * b.weights[j] / liver.lumped_area_m2(b.nodes[static_cast<size_t>(j)]) *
+             liver.greens.block<3, 3>(3 * node_i, 3 * fj);
+      }
+    } else {
+      const auto& columns = gallbladder_compliance_.NodeColumns(b.nodes[static_cast<size_t>(j)]);
+      for (int i = 0; i < 3; ++i)
+        if (a.weights[i] != 0.0)
+          c += a.weights[i] * b.weights[j] * columns.block<3, 3>(3 * a.nodes[static_cast<size_t>(i)], 0);
+    }
+  }
+  return c;
+}
+
+DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& poses) {
+  for (int i = 0; i < 2; ++i) CheckPose(poses[static_cast<size_t>(i)], i);
+  const DissectionSettings& s = model_->settings;
+  const double h = s.time_step_s;
+  const FemModel& gb_model = *model_->gallbladder;
+  const BemModel& liver = *model_->liver;
+  const TetBoundary& boundary = model_->gallbladder_boundary;
+  DissectionStepReport report;
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last = start;
+  auto lap = [&](double& slot) {
+    const Clock::time_point now = Clock::now();
+    slot = Microseconds(now - last);
+    last = now;
+  };
+
+  // 1. Instrument poses -> tool points.
+  std::array<Eigen::Vector3d, 2> dirs;
+  for (size_t i = 0; i < 2; ++i) {
+    const InstrumentMount& mount = model_->instruments[i];
+    tips_[i] = TipPosition(mount.p_RemoteCentre_W, mount.reference_direction_W, poses[i]);
+    dirs[i] = ShaftDirection(mount.reference_direction_W, poses[i]);
+  }
+
+  // 2. Spring forces at the current state.
+  if (attachments_changed_ && steps_since_compliance_ >= s.compliance_refresh_steps) UpdateAttachments();
+  ++steps_since_compliance_;
+  const TissueNodalForces spring_forces =
+      ComputeTissueForces(tissue_, gallbladder_current_, AsVertices(gallbladder_.state().velocity_m_per_s),
+                          liver_current_, liver_velocity_, s.springs);
+  lap(report.times.springs_us);
+
+  // 3. Free motion: the gallbladder's implicit step, the liver's quasi-static response.
+  Eigen::VectorXd f_ext = AsStackedVector(spring_forces.gallbladder);
+  if (!s.gravity_m_per_s2.isZero()) f_ext += gb_model.GravityForces(s.gravity_m_per_s2);
+  gallbladder_.SetExternalForces(f_ext);
+  const StepReport fem = gallbladder_.Step();
+  report.gallbladder_accepted = fem.accepted;
+  report.rejection_reason = fem.rejection_reason;
+  Vertices gb_free = gallbladder_.CurrentPositions();
+  lap(report.times.gallbladder_us);
+
+  std::vector<int> loaded;
+  std::vector<Eigen::Vector3d> loads;
+  for (int v = 0; v < liver.num_nodes(); ++v) {
+    if (liver.layout.free_index(v) < 0) continue;
+    const Eigen::Vector3d f = spring_forces.liver.row(v).transpose();
+    if (f.isZero()) continue;
+    loaded.push_back(v);
+    loads.push_back(f / liver.lumped_area_m2(v));
+  }
+  Vertices tractions(static_cast<Eigen::Index>(loaded.size()), 3);
+  for (size_t k = 0; k < loaded.size(); ++k) tractions.row(static_cast<Eigen::Index>(k)) = loads[k].transpose();
+  liver_solver_.SetAppliedTractions(loaded, tractions);
+  liver_solver_.Solve(Vertices(0, 3), liver_solution_);
+  Vertices liver_free = liver.rest_surface.vertices + liver_solution_.displacement_m;
+  lap(report.times.liver_us);
+
+  // 4. Ray collision of each tool against the free surfaces.
+  Vertices gb_surface_free(boundary.surface_to_volume.size(), 3);
+  for (Eigen::Index i = 0; i < gb_surface_free.rows(); ++i)
+    gb_surface_free.row(i) = gb_free.row(boundary.surface_to_volume[i]);
+  caster_.UpdateVertices(liver_surface_id_, liver_free);
+  caster_.UpdateVertices(gallbladder_surface_id_, gb_surface_free);
+  std::array<std::optional<SurfaceHit>, 2> hits;
+  std::array<double, 2> hit_gap{0, 0};
+  for (size_t i = 0; i < 2; ++i) {
+    const ToolSegment ray{model_->instruments[i].p_RemoteCentre_W, tips_[i] + s.contact_margin_m * dirs[i]};
+    std::optional<SurfaceHit> hit = caster_.FirstHit(ray);
+    if (hit && !hit->from_inside) {
+      hits[i] = hit;
+      hit_gap[i] = hit->normal.dot(tips_[i] - hit->point);
+    }
+  }
+  lap(report.times.collision_us);
+
+  // 5. Grasp / slip / release (the left instrument, when it is a grasper).
+  const bool has_grasper = model_->instruments[0].role == InstrumentRole::kGrasper;
+  auto gb_point = [&](int triangle, const Eigen::Vector3d& w, const Vertices& x) {
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) p += w[k] * x.row(boundary.surface.triangles(triangle, k)).transpose();
+    return p;
+  };
+  if (has_grasper) {
+    GraspInput in;
+    in.jaw_angle = poses[0].jaw_angle_rad;
+    in.jaw_position = tips_[0];
+    if (hits[0] && hits[0]->surface == gallbladder_surface_id_ && hit_gap[0] <= s.grasp_reach_m)
+      in.hits.push_back(*hits[0]);
+    if (grasp_.state() == GraspStateMachine::State::kHolding) {
+      for (size_t k = 0; k < grasp_.points().size(); ++k) {
+        in.grasped_positions.push_back(
+            gb_point(grasp_.points()[k].triangle, grasp_.points()[k].weights, gb_surface_free));
+        in.constraint_forces.push_back(k < grasp_point_forces_.size() ? grasp_point_forces_[k] : 0.0);
+      }
+    }
+    report.grasp = grasp_.Update(in);
+  }
+  const bool holding = has_grasper && grasp_.state() == GraspStateMachine::State::kHolding;
+  lap(report.times.grasp_us);
+
+  // 6. Constraint rows and the solve (W + W_soft) lambda + delta = 0.
+  std::vector<Row> rows;
+  auto tissue_row = [&](bool on_liver, int triangle, const Eigen::Vector3d& w) {
+    Row r;
+    r.liver = on_liver;
+    r.weights = w;
+    for (int k = 0; k < 3; ++k)
+      r.nodes[static_cast<size_t>(k)] = on_liver ? liver.rest_surface.triangles(triangle, k)
+                                                 : boundary.surface_to_volume[boundary.surface.triangles(triangle, k)];
+    return r;
+  };
+  if (holding) {
+    for (size_t k = 0; k < grasp_.points().size(); ++k) {
+      const GraspPoint& g = grasp_.points()[k];
+      const Eigen::Vector3d p = gb_point(g.triangle, g.weights, gb_surface_free);
+      for (int axis = 0; axis < 3; ++axis) {
+        Row r = tissue_row(false, g.triangle, g.weights);
+        r.direction = Eigen::Vector3d::Unit(axis);
+        r.gap = r.direction.dot(tips_[0] - p);
+        r.kind = ConstraintKind::kBilateral;
+        r.soft = s.grasp_compliance_m_per_N;
+        r.instrument = 0;
+        r.grasp_point = static_cast<int>(k);
+        rows.push_back(r);
+      }
+    }
+  }
+  for (size_t i = 0; i < 2; ++i) {
+    if (!hits[i] || (i == 0 && holding)) continue;
+    Row r = tissue_row(hits[i]->surface == liver_surface_id_, hits[i]->triangle, hits[i]->weights);
+    r.direction = hits[i]->normal;
+    r.gap = hit_gap[i];
+    r.kind = ConstraintKind::kUnilateral;
+    r.soft = s.contact_compliance_m_per_N;
+    r.instrument = static_cast<int>(i);
+    rows.push_back(r);
+  }
+  const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
+  ConstraintProblem problem;
+  problem.delassus.setZero(m, m);
+  problem.soft_compliance.resize(m);
+  problem.gap.resize(m);
+  if (attachments_changed_ && m > 0 && steps_since_compliance_ >= s.compliance_refresh_steps) UpdateAttachments();
+  for (Eigen::Index a = 0; a < m; ++a) {
+    const Row& ra = rows[static_cast<size_t>(a)];
+    problem.soft_compliance[a] = ra.soft;
+    problem.gap[a] = ra.gap;
+    problem.kinds.push_back(ra.kind);
+    for (Eigen::Index b = a; b < m; ++b) {
+      const Row& rb = rows[static_cast<size_t>(b)];
+      const double w = ra.direction.dot(BlockCompliance(ra, rb) * rb.direction);
+      problem.delassus(a, b) = w;
+      problem.delassus(b, a) = w;
+    }
+  }
+  report.constraint_rows = static_cast<int>(m);
+  report.constraints = SolveConstraints(problem);
+  const Eigen::VectorXd& lambda = report.constraints.lambda;
+  lap(report.times.constraints_us);
+
+  // 7. Correction: each body moves by C J^T lambda (force -d lambda on the tissue point).
+  Eigen::VectorXd du_gb = Eigen::VectorXd::Zero(gb_model.num_dofs());
+  Eigen::VectorXd du_liver = Eigen::VectorXd::Zero(3 * liver.num_nodes());
+  for (Eigen::Index a = 0; a < m; ++a) {
+    if (lambda[a] == 0.0) continue;
+    const Row& r = rows[static_cast<size_t>(a)];
+    const Eigen::Vector3d force = -r.direction * lambda[a];
+    for (int j = 0; j < 3; ++j) {
+      const int node = r.nodes[static_cast<size_t>(j)];
+      if (r.weights[j] == 0.0) continue;
+      if (r.liver) {
+        const int fj = liver.layout.free_index(node);
+        if (fj >= 0)
+          du_liver.noalias() +=
+              liver.greens.middleCols<3>(3 * fj) * (r.weights[j] * force / liver.lumped_area_m2(node));
+      } else {
+        du_gb.noalias() += gallbladder_compliance_.NodeColumns(node) * (r.weights[j] * force);
+      }
+    }
+  }
+  if (!du_gb.isZero()) {
+    gallbladder_.SetState(gallbladder_.state().displacement_m + du_gb,
+                          gallbladder_.state().velocity_m_per_s + du_gb / h);
+  }
+  gallbladder_current_.vertices = gallbladder_.CurrentPositions();
+  Vertices liver_new = liver_free;
+  for (int v = 0; v < liver.num_nodes(); ++v)
+    if (liver.layout.free_index(v) >= 0) liver_new.row(v) += du_liver.segment<3>(3 * v).transpose();
+  liver_velocity_ = (liver_new - liver_current_.vertices) / h;
+  liver_current_.vertices = std::move(liver_new);
+  lap(report.times.correction_us);
+
+  // 8. Tool forces, grasp point forces, haptic frames and touches.
+  grasp_point_forces_.assign(holding ? grasp_.points().size() : 0, 0.0);
+  std::array<std::vector<Eigen::Index>, 2> active;
+  for (Eigen::Index a = 0; a < m; ++a) {
+    const Row& r = rows[static_cast<size_t>(a)];
+    report.tool_force_N[static_cast<size_t>(r.instrument)] += r.direction * lambda[a];
+    if (r.grasp_point >= 0) {
+      double& f = grasp_point_forces_[static_cast<size_t>(r.grasp_point)];
+      f = std::hypot(f, lambda[a]);
+    }
+    if (lambda[a] > 0.0 || r.kind == ConstraintKind::kBilateral) active[static_cast<size_t>(r.instrument)].push_back(a);
+  }
+  const Eigen::MatrixXd system = problem.delassus + Eigen::MatrixXd(problem.soft_compliance.asDiagonal());
+  for (size_t i = 0; i < 2; ++i) {
+    HapticContactFrame frame;
+    frame.time_s = time_s_ + h;
+    frame.p_Tool_W = tips_[i];
+    frame.f_Tool_W = report.tool_force_N[i];
+    frame.unilateral = !(i == 0 && holding);
+    frame.active = !active[i].empty();
+    if (frame.active) {
+      // Moving this tool by dp changes its rows' gaps by G^T dp: dlambda = A^-1 G^T dp and the
+      // force on the tool by G dlambda, so its stiffness is G A^-1 G^T (the other tool held still).
+      const Eigen::Index k = static_cast<Eigen::Index>(active[i].size());
+      Eigen::MatrixXd a_sub(k, k), g(3, k);
+      for (Eigen::Index p = 0; p < k; ++p) {
+        g.col(p) = rows[static_cast<size_t>(active[i][static_cast<size_t>(p)])].direction;
+        for (Eigen::Index q = 0; q < k; ++q)
+          a_sub(p, q) = system(active[i][static_cast<size_t>(p)], active[i][static_cast<size_t>(q)]);
+      }
+      frame.stiffness_N_per_m = g * a_sub.ldlt().solve(g.transpose());
+      if (frame.unilateral) frame.normal_W = hits[i]->normal;
+    }
+    frames_[i] = frame;
+
+    ToolTouch& touch = report.touches[i];
+    touch.p_Tip_W = tips_[i];
+    if (hits[i]) {
+      // The gap after the correction: the solved rows close it exactly; others keep their own.
+      double gap = hit_gap[i];
+      for (Eigen::Index a = 0; a < m; ++a)
+        if (rows[static_cast<size_t>(a)].instrument == static_cast<int>(i) &&
+            rows[static_cast<size_t>(a)].grasp_point < 0)
+          gap = (system.row(a) * lambda)(0) + problem.gap[a];
+      touch.gap_m = gap;
+      if (gap <= s.touch_tolerance_m) {
+        touch.surface = hits[i]->surface == liver_surface_id_ ? TouchedSurface::kLiver : TouchedSurface::kGallbladder;
+        touch.triangle = hits[i]->triangle;
+        touch.weights = hits[i]->weights;
+      }
+    }
+  }
+  // Membrane elements around the hook tip (the membrane has no mechanics of its own: it burns).
+  {
+    const Vertices points = membrane_points();
+    const TissueMembrane& membrane = tissue_.membrane;
+    for (size_t i = 0; i < 2; ++i) {
+      if (model_->instruments[i].role != InstrumentRole::kCauteryHook) continue;
+      for (Eigen::Index e = 0; e < membrane.triangles.rows(); ++e) {
+        const TrianglePoint cp = ClosestPointOnTriangle(tips_[i], points.row(membrane.triangles(e, 0)).transpose(),
+                                                        points.row(membrane.triangles(e, 1)).transpose(),
+                                                        points.row(membrane.triangles(e, 2)).transpose());
+        if ((cp.point - tips_[i]).norm() <= s.membrane_touch_radius_m)
+          report.touches[i].membrane_elements.push_back(static_cast<int>(e));
+      }
+    }
+  }
+  time_s_ += h;
+  ++steps_;
+  report.times.total_us = Microseconds(Clock::now() - start);
+  return report;
+}
+
+}  // namespace vesica::physics

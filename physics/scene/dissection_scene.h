@@ -1,0 +1,123 @@
+#pragma once
+// The coupled cholecystectomy scene: BEM liver, FEM gallbladder, connective-tissue springs, two
+// instruments colliding by rays, grasping and pushing through Lagrange-multiplier constraints.
+// One Step() reads as ARCHITECTURE.md's "one physics step" (STYLE.md 3):
+//   1. instrument poses -> tool points
+//   2. spring forces at the current state (explicit on the stiff liver, implicit stiffness on the
+//      gallbladder through FemBody attachments)
+//   3. free motion: gallbladder implicit step, liver quasi-static capacitance solve
+//   4. ray collision of each tool against the free surfaces (Bullet BVH refitted)
+//   5. grasp / slip / release state machine
+//   6. constraint solve (W + W_soft) lambda + delta = 0 with W = J C J^T from both bodies
+//   7. correction: each body moves by C J^T lambda
+//   8. publish per-instrument haptic frames; report what the hook touches (for fx)
+// Cautery itself lives in fx (which may not be included here): the caller cuts springs.
+// Deterministic: the same commands give bit-identical states on the same binary.
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "physics/bem/capacitance_solver.h"
+#include "physics/collision/surface_ray_caster.h"
+#include "physics/fem/fem_body.h"
+#include "physics/grasp/grasp_state_machine.h"
+#include "physics/instrument/instrument_pose.h"
+#include "physics/scene/constraint_solver.h"
+#include "physics/scene/dissection_model.h"
+#include "physics/scene/fem_rest_compliance.h"
+#include "physics/scene/haptic_contact_frame.h"
+
+namespace vesica::physics {
+
+enum class TouchedSurface { kNone, kLiver, kGallbladder };
+
+/// What an instrument's tip touches after the step.
+struct ToolTouch {
+  TouchedSurface surface = TouchedSurface::kNone;
+  int triangle = -1;  ///< liver surface triangle or gallbladder boundary triangle
+  Eigen::Vector3d weights = Eigen::Vector3d::Constant(1.0 / 3.0);
+  Eigen::Vector3d p_Tip_W = Eigen::Vector3d::Zero();
+  double gap_m = 0;                    ///< signed distance tip - surface along the normal (< 0: pressing)
+  std::vector<int> membrane_elements;  ///< membrane triangles within the touch radius of the tip
+};
+
+/// Wall time of each stage of the last step, microseconds (not part of the state).
+struct StageTimes {
+  double springs_us = 0, gallbladder_us = 0, liver_us = 0, collision_us = 0, grasp_us = 0, constraints_us = 0,
+         correction_us = 0, total_us = 0;
+};
+
+struct DissectionStepReport {
+  bool gallbladder_accepted = true;
+  std::string rejection_reason;  ///< why the gallbladder step was rolled back
+  int constraint_rows = 0;
+  ConstraintSolution constraints;
+  GraspEvents grasp;
+  std::array<ToolTouch, 2> touches;
+  std::array<Eigen::Vector3d, 2> tool_force_N{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  StageTimes times;
+};
+
+class DissectionScene {
+ public:
+  explicit DissectionScene(std::shared_ptr<const DissectionModel> model);
+  ~DissectionScene();
+  DissectionScene(const DissectionScene&) = delete;
+  DissectionScene& operator=(const DissectionScene&) = delete;
+
+  /// One physics step with the instruments at `poses` ([0] grasper, [1] hook). Throws
+  /// std::invalid_argument (state unchanged) for a non-finite or negative-insertion pose.
+  DissectionStepReport Step(const std::array<InstrumentPose, 2>& poses);
+
+  /// Removes spring `index` (its membrane burnt away); the gallbladder's attachments follow.
+  void CutSpring(int index);
+
+  const DissectionModel& model() const { return *model_; }
+  double time_s() const { return time_s_; }
+  long steps() const { return steps_; }
+  const ConnectiveTissue& tissue() const { return tissue_; }
+  const GraspStateMachine& grasp() const { return grasp_; }
+  bool gallbladder_free() const { return tissue_.num_alive() == 0; }
+
+  /// Current liver surface vertices (#V x 3) and gallbladder boundary vertices (boundary numbering).
+  const Vertices& liver_positions() const { return liver_current_.vertices; }
+  Vertices gallbladder_surface_positions() const;
+  const FemBody& gallbladder() const { return gallbladder_; }
+  /// Membrane points: 2s gallbladder end, 2s+1 liver end of spring s (TissueMembrane numbering).
+  Vertices membrane_points() const;
+  /// Tool tip of instrument i at the last step.
+  const Eigen::Vector3d& tool_tip(int i) const { return tips_.at(static_cast<size_t>(i)); }
+  const HapticContactFrame& haptic_frame(int i) const { return frames_.at(static_cast<size_t>(i)); }
+  /// Liver kinetic energy is not modelled (quasi-static BEM); this is the gallbladder's kinetic +
+  /// elastic energy plus the springs' potential energy, J.
+  double Energy() const;
+
+ private:
+  struct Row;
+  void UpdateAttachments();
+  Eigen::Matrix3d BlockCompliance(const Row& a, const Row& b);
+
+  std::shared_ptr<const DissectionModel> model_;
+  FemBody gallbladder_;
+  FemRestCompliance gallbladder_compliance_;
+  BemCapacitanceSolver liver_solver_;
+  ConnectiveTissue tissue_;
+  GraspStateMachine grasp_;
+  SurfaceRayCaster caster_;
+  int liver_surface_id_ = -1, gallbladder_surface_id_ = -1;
+  TetrahedralMesh gallbladder_current_;  // rest topology, current vertices
+  TriangleMesh liver_current_;
+  Vertices liver_velocity_;
+  BemSolution liver_solution_;
+  std::array<Eigen::Vector3d, 2> tips_{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  std::array<HapticContactFrame, 2> frames_;
+  std::vector<double> grasp_point_forces_;  // |lambda| per grasped point, last step
+  bool attachments_changed_ = false;
+  int steps_since_compliance_ = 0;
+  double time_s_ = 0;
+  long steps_ = 0;
+};
+
+}  // namespace vesica::physics

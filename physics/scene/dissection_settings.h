@@ -1,0 +1,41 @@
+#pragma once
+// Settings of the coupled cholecystectomy scene (gallbladder paper §2.4-2.5, registration paper
+// eqs. 1-4 and 6). SI units; every field names its unit and range.
+
+#include <Eigen/Core>
+
+#include "physics/grasp/grasp_state_machine.h"
+#include "physics/tissue/spring_forces.h"
+
+namespace vesica::physics {
+
+enum class InstrumentRole { kGrasper, kCauteryHook };
+
+/// Where an instrument enters: it pivots about the trocar's remote centre; yaw = pitch = 0
+/// points the shaft along reference_direction_W (unit).
+struct InstrumentMount {
+  InstrumentRole role = InstrumentRole::kGrasper;
+  Eigen::Vector3d p_RemoteCentre_W = Eigen::Vector3d::Zero();
+  Eigen::Vector3d reference_direction_W = Eigen::Vector3d::UnitZ();
+};
+
+struct DissectionSettings {
+  double time_step_s = 0.005;  ///< physics step h, > 0 (200 Hz: ARCHITECTURE.md's physics rate)
+  /// Gravity on the gallbladder, m/s^2. Zero by default: the paper's scene has none, and in the
+  /// patient the omentum and bowel carry the organs' weight.
+  Eigen::Vector3d gravity_m_per_s2 = Eigen::Vector3d::Zero();
+  SpringMaterial springs{20.0, 0.05};  ///< connective tissue, per spring (N/m, N s/m)
+  double attach_offset_m = 0.005;      ///< paper §2.4: gallbladder offset toward the liver, > 0
+  GraspSettings grasp;
+  double grasp_compliance_m_per_N = 2e-3;   ///< W_soft of grasp rows (eq. 6): jaws and tissue give, >= 0
+  double contact_compliance_m_per_N = 0.0;  ///< W_soft of contact rows, >= 0
+  double contact_margin_m = 0.003;    ///< rays reach this far past the tip, so a touch is seen before penetration, > 0
+  double touch_tolerance_m = 0.0005;  ///< a tool within this gap of a surface touches it (cautery), >= 0
+  double grasp_reach_m = 0.003;       ///< closing jaws within this gap of the gallbladder take hold, >= 0
+  double membrane_touch_radius_m = 0.003;  ///< hook tip radius that burns membrane elements, > 0
+  double hook_length_m = 0.004;            ///< hook from the shaft tip, for the renderer and touch, > 0
+  int compliance_refresh_steps =
+      20;  ///< refactor the constraint compliance at most this often after springs are cut, >= 1
+};
+
+}  // namespace vesica::physics

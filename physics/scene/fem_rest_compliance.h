@@ -1,0 +1,39 @@
+#pragma once
+// Compliance of a FEM body for the constraint solver, from the system matrix at rest
+// (S0 = c_M M + c_D D + K0 + attachments; C = S0^-1), factorised once with CHOLMOD and solved
+// column by column only for the nodes constraints touch, cached until the attachments change.
+// This is SOFA's precomputed constraint correction made lazy: exact for a linear body, the
+// rest-shape approximation for a corotational one (its W is then what the body would feel
+// without its current rotation; the correction is re-linearised every step, so errors do not
+// accumulate). Keeps the per-step cost to a few dense 3x3 blocks instead of 3m sparse solves.
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "physics/fem/fem_model.h"
+
+namespace vesica::physics {
+
+class FemRestCompliance {
+ public:
+  explicit FemRestCompliance(std::shared_ptr<const FemModel> model);
+  ~FemRestCompliance();
+
+  /// Per-dof attachment stiffness and damping (as FemBody::SetAttachmentStiffness); invalidates
+  /// the factor and the cached columns. Sizes 3n, entries >= 0.
+  void SetAttachments(const Eigen::VectorXd& stiffness_N_per_m, const Eigen::VectorXd& damping_Ns_per_m);
+
+  /// The 3n x 3 block of C for a unit force at `node` (m/N): displacement increments of every
+  /// dof. Factorises on first use after a change. Throws FemError if S0 is not positive definite.
+  const Eigen::Matrix<double, Eigen::Dynamic, 3>& NodeColumns(int node);
+
+  int factorizations() const { return factorizations_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  int factorizations_ = 0;
+};
+
+}  // namespace vesica::physics
