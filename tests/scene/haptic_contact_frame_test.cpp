@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <limits>
+#include <stdexcept>
 #include <thread>
 
+#include "physics/scene/haptic_force_renderer.h"
 #include "physics/scene/triple_buffer.h"
 
 namespace vesica::physics {
@@ -87,6 +90,42 @@ TEST(TripleBufferTest, ConcurrentReaderNeverSeesTornOrOlderFrames) {
   EXPECT_EQ(backwards, 0);
   EXPECT_EQ(last, kFrames);
   EXPECT_GT(reads, 0);
+}
+
+}  // namespace
+}  // namespace vesica::physics
+
+namespace vesica::physics {
+namespace {
+
+TEST(HapticForceRendererTest, NewFrameFadesInWithoutAJump) {
+  HapticContactFrame a;
+  a.active = true;
+  a.unilateral = false;
+  a.f_Tool_W = Eigen::Vector3d(0, 0, 1.0);
+  a.stiffness_N_per_m = 100.0 * Eigen::Matrix3d::Identity();
+  HapticContactFrame b = a;
+  b.f_Tool_W = Eigen::Vector3d(0, 0, 2.0);
+  b.p_Tool_W = Eigen::Vector3d(0, 0, -0.001);
+
+  HapticForceRenderer r(0.005);
+  const Eigen::Vector3d p(0.001, 0, 0);
+  r.Update(a, p, 0.0);
+  EXPECT_TRUE(r.Force(p, 0.0).isApprox(RenderContactForce(a, p), 1e-15));  // nothing before: a itself
+  r.Update(b, p, 0.01);
+  EXPECT_TRUE(r.Force(p, 0.01).isApprox(RenderContactForce(a, p), 1e-15));  // no jump at the update
+  const Eigen::Vector3d half = 0.5 * (RenderContactForce(a, p) + RenderContactForce(b, p));
+  EXPECT_TRUE(r.Force(p, 0.0125).isApprox(half, 1e-12));                     // linear fade
+  EXPECT_TRUE(r.Force(p, 0.015).isApprox(RenderContactForce(b, p), 1e-15));  // b after one blend time
+  EXPECT_TRUE(r.Force(p, 1.0).isApprox(RenderContactForce(b, p), 1e-15));
+  // Stiffness still acts during the fade: moving the tool changes the force at once.
+  EXPECT_TRUE((r.Force(p + Eigen::Vector3d(0, 0, 0.001), 0.0125) - r.Force(p, 0.0125))
+                  .isApprox(Eigen::Vector3d(0, 0, -0.1), 1e-12));
+}
+
+TEST(HapticForceRendererTest, RejectsANonPositiveBlendTime) {
+  EXPECT_THROW(HapticForceRenderer(0.0), std::invalid_argument);
+  EXPECT_THROW(HapticForceRenderer(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
 }
 
 }  // namespace
