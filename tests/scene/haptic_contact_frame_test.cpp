@@ -111,7 +111,8 @@ TEST(HapticForceRendererTest, NewFrameFadesInWithoutAJump) {
   HapticForceRenderer r(0.005);
   const Eigen::Vector3d p(0.001, 0, 0);
   r.Update(a, p, 0.0);
-  EXPECT_TRUE(r.Force(p, 0.0).isApprox(RenderContactForce(a, p), 1e-15));  // nothing before: a itself
+  EXPECT_EQ(r.Force(p, 0.0), Eigen::Vector3d::Zero());  // a first touch fades in from nothing too
+  EXPECT_TRUE(r.Force(p, 0.005).isApprox(RenderContactForce(a, p), 1e-15));
   r.Update(b, p, 0.01);
   EXPECT_TRUE(r.Force(p, 0.01).isApprox(RenderContactForce(a, p), 1e-15));  // no jump at the update
   const Eigen::Vector3d half = 0.5 * (RenderContactForce(a, p) + RenderContactForce(b, p));
