@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 namespace vesica::fx {
 
@@ -19,6 +20,9 @@ struct CauteryContact {
   Eigen::Vector3d p_WTip_W = Eigen::Vector3d::Zero();  ///< hook tip in world, metres
   bool pedal_down = false;                             ///< the cautery pedal (current flows only while it is down)
   double dt_s = 0;                                     ///< length of the step, seconds, >= 0
+  /// kMembrane: further membrane elements under the hook tip besides `element` (the hook's
+  /// radius spans several thin elements); each burns and fades like `element`.
+  std::vector<int> more_membrane_elements;
 
   /// Burning happens only while the pedal is down and the hook touches a surface.
   bool active() const { return pedal_down && surface != CauterySurface::kNone; }

@@ -48,11 +48,21 @@ void CauteryEffects::Step(const CauteryContact& contact) {
     CheckIndex(std::string("CauteryEffects: ") + ToString(contact.surface) + " surface", "element", contact.element,
                MapOf(contact.surface).num_elements());
   }
+  for (const int e : contact.more_membrane_elements) {
+    if (contact.surface != CauterySurface::kMembrane)
+      throw std::invalid_argument(std::string("CauteryEffects: more_membrane_elements given for a contact with the ") +
+                                  ToString(contact.surface) + " surface");
+    CheckIndex("CauteryEffects: membrane surface", "more_membrane_elements", e, membrane_burn_.num_elements());
+  }
   time_s_ += contact.dt_s;
   if (contact.active()) {
     MapOf(contact.surface).Burn(contact.element, contact.dt_s, time_s_);
     if (contact.surface == CauterySurface::kMembrane) {
       membrane_.Touch(contact.element, contact.dt_s, time_s_);
+      for (const int e : contact.more_membrane_elements) {
+        membrane_burn_.Burn(e, contact.dt_s, time_s_);
+        membrane_.Touch(e, contact.dt_s, time_s_);
+      }
     }
   }
   smoke_.Update(contact.dt_s, contact.active(), contact.p_WTip_W);

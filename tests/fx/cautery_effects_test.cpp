@@ -105,6 +105,30 @@ TEST(CauteryEffectsTest, BurningEveryMembraneElementFreesTheGallbladder) {
   EXPECT_GT(fx.membrane_burn().level(0), 0.0);  // membrane blackens while it fades
 }
 
+TEST(CauteryEffectsTest, SeveralMembraneElementsUnderTheHookFadeTogether) {
+  CauteryEffects fx(Strips(), Params());
+  CauteryContact c = Touch(CauterySurface::kMembrane, 0, true);
+  c.more_membrane_elements = {1, 2};
+  fx.Step(c);
+  fx.Step(c);  // 0.25 s: all three removed, spring 0 (elements 0-2) cut, spring 1 untouched
+  for (int e = 0; e < 3; ++e) EXPECT_TRUE(fx.membrane().element_removed(e)) << e;
+  for (int e = 3; e < 6; ++e) EXPECT_FALSE(fx.membrane().element_removed(e)) << e;
+  EXPECT_TRUE(fx.membrane().spring_cut(0));
+  EXPECT_FALSE(fx.membrane().spring_cut(1));
+  EXPECT_GT(fx.membrane_burn().level(1), 0.0);
+  EXPECT_GT(fx.membrane_burn().level(2), 0.0);
+
+  CauteryContact bad = Touch(CauterySurface::kMembrane, 3, true);
+  bad.more_membrane_elements = {4, 6};
+  EXPECT_THAT([&] { fx.Step(bad); }, ::testing::ThrowsMessage<std::invalid_argument>(
+                                         HasSubstr("membrane surface: more_membrane_elements 6 out of range")));
+  CauteryContact on_liver = Touch(CauterySurface::kLiver, 3, true);
+  on_liver.more_membrane_elements = {4};
+  EXPECT_THAT([&] { fx.Step(on_liver); },
+              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("more_membrane_elements given")));
+  EXPECT_FALSE(fx.membrane().element_removed(4));  // rejected contacts change nothing
+}
+
 TEST(CauteryEffectsTest, ReplayIsBitIdentical) {
   auto run = [] {
     CauteryEffects fx(Strips(), Params());
