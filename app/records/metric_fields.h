@@ -1,0 +1,47 @@
+#pragma once
+// The one list of SessionMetrics fields: column name, type and member. The SQL schemas, the
+// INSERT/SELECT statements and the CSV columns are all generated from it, so they cannot
+// disagree with each other or silently drop a field.
+
+#include <array>
+#include <variant>
+
+#include "app/records/session_metrics.h"
+
+namespace vesica::app {
+
+using MetricMember = std::variant<double SessionMetrics::*, int SessionMetrics::*, bool SessionMetrics::*>;
+
+struct MetricField {
+  const char* name;  // column name in SQL and CSV
+  MetricMember member;
+};
+
+inline constexpr std::array<MetricField, 15> kMetricFields{{
+    {"duration_s", &SessionMetrics::duration_s},
+    {"path_length_left_m", &SessionMetrics::path_length_left_m},
+    {"path_length_right_m", &SessionMetrics::path_length_right_m},
+    {"slips", &SessionMetrics::slips},
+    {"cautery_on_s", &SessionMetrics::cautery_on_s},
+    {"liver_damage_m2", &SessionMetrics::liver_damage_m2},
+    {"gallbladder_damage_m2", &SessionMetrics::gallbladder_damage_m2},
+    {"max_force_N", &SessionMetrics::max_force_N},
+    {"mean_force_N", &SessionMetrics::mean_force_N},
+    {"tissue_removed_fraction", &SessionMetrics::tissue_removed_fraction},
+    {"springs_cut", &SessionMetrics::springs_cut},
+    {"springs_total", &SessionMetrics::springs_total},
+    {"gallbladder_free", &SessionMetrics::gallbladder_free},
+    {"perforation", &SessionMetrics::perforation},
+    {"success", &SessionMetrics::success},
+}};
+
+/// Field-by-field equality (exact, doubles included: the stores round-trip doubles bit for bit).
+inline bool operator==(const SessionMetrics& a, const SessionMetrics& b) {
+  for (const auto& field : kMetricFields) {
+    const bool same = std::visit([&](auto member) { return a.*member == b.*member; }, field.member);
+    if (!same) return false;
+  }
+  return true;
+}
+
+}  // namespace vesica::app

@@ -1,0 +1,66 @@
+#include "app/records/session_csv.h"
+
+#include <charconv>
+#include <ostream>
+#include <variant>
+
+#include "app/records/metric_fields.h"
+
+namespace vesica::app {
+namespace {
+
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+// Shortest text that parses back to the same double.
+std::string DoubleText(double value) {
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof text, value);
+  return std::string(text, result.ptr);
+}
+
+std::string MetricText(const SessionMetrics& metrics, const MetricField& field) {
+  return std::visit(
+      [&](auto member) -> std::string {
+        const auto value = metrics.*member;
+        if constexpr (std::is_same_v<decltype(value), const double>)
+          return DoubleText(value);
+        else if constexpr (std::is_same_v<decltype(value), const bool>)
+          return value ? "1" : "0";
+        else
+          return std::to_string(value);
+      },
+      field.member);
+}
+
+}  // namespace
+
+std::vector<std::string> SessionCsvColumns() {
+  std::vector<std::string> columns{"id",        "trainee_id",          "scenario", "station", "started_utc",
+                                   "ended_utc", "input_recording_path"};
+  for (const auto& field : kMetricFields) columns.emplace_back(field.name);
+  return columns;
+}
+
+void WriteSessionsCsv(const std::vector<StoredSession>& sessions, std::ostream& out) {
+  const auto columns = SessionCsvColumns();
+  for (std::size_t i = 0; i < columns.size(); ++i) out << (i > 0 ? "," : "") << columns[i];
+  out << '\n';
+  for (const auto& session : sessions) {
+    const auto& r = session.record;
+    out << session.id << ',' << CsvField(r.trainee_id) << ',' << CsvField(r.scenario) << ',' << CsvField(r.station)
+        << ',' << FormatUtcIso8601(r.started_unix_s) << ',' << FormatUtcIso8601(r.ended_unix_s) << ','
+        << CsvField(r.input_recording_path);
+    for (const auto& field : kMetricFields) out << ',' << MetricText(r.metrics, field);
+    out << '\n';
+  }
+}
+
+}  // namespace vesica::app

@@ -1,0 +1,81 @@
+#include "app/records/sql_schema.h"
+
+#include <type_traits>
+#include <variant>
+
+#include "app/records/metric_fields.h"
+
+namespace vesica::app {
+namespace {
+
+// Metric names are quoted: PostgreSQL would otherwise fold "max_force_N" to lower case.
+std::string Quoted(const char* name) { return std::string("\"") + name + "\""; }
+
+std::string MetricColumnType(const MetricField& field, SqlDialect dialect) {
+  const bool pg = dialect == SqlDialect::kPostgres;
+  return std::visit(
+      [&](auto member) -> std::string {
+        using T = std::remove_cvref_t<decltype(SessionMetrics{}.*member)>;
+        if constexpr (std::is_same_v<T, double>)
+          return pg ? "DOUBLE PRECISION" : "REAL";
+        else if constexpr (std::is_same_v<T, int>)
+          return "INTEGER";
+        else
+          return pg ? "BOOLEAN" : "INTEGER CHECK (" + Quoted(field.name) + " IN (0, 1))";
+      },
+      field.member);
+}
+
+std::string Placeholder(SqlDialect dialect, int index_from_1) {
+  if (dialect == SqlDialect::kSqlite) return "?";
+  std::string placeholder = "$";  // appended, not "$" + ...: GCC 12 warns falsely (-Wrestrict)
+  placeholder += std::to_string(index_from_1);
+  return placeholder;
+}
+
+}  // namespace
+
+std::vector<std::string> CreateSchemaV1Sql(SqlDialect dialect) {
+  const bool pg = dialect == SqlDialect::kPostgres;
+  std::string sessions =
+      "CREATE TABLE sessions (\n"
+      "  id " +
+      std::string(pg ? "BIGINT GENERATED ALWAYS AS IDENTITY PRIMARY KEY" : "INTEGER PRIMARY KEY") +
+      ",\n"
+      "  trainee_id TEXT NOT NULL REFERENCES trainees(trainee_id),\n"
+      "  scenario TEXT NOT NULL,\n"
+      "  station TEXT NOT NULL,\n"
+      "  started_unix_s BIGINT NOT NULL,\n"
+      "  ended_unix_s BIGINT NOT NULL,\n"
+      "  input_recording_path TEXT NOT NULL";
+  for (const auto& field : kMetricFields) {
+    sessions += ",\n  " + Quoted(field.name) + " " + MetricColumnType(field, dialect) + " NOT NULL";
+  }
+  sessions += "\n)";
+  return {
+      "CREATE TABLE trainees (trainee_id TEXT PRIMARY KEY)",
+      sessions,
+      "CREATE INDEX sessions_by_trainee ON sessions(trainee_id, started_unix_s, id)",
+  };
+}
+
+std::string InsertSessionSql(SqlDialect dialect) {
+  std::string columns = "trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path";
+  for (const auto& field : kMetricFields) columns += ", " + Quoted(field.name);
+  std::string values;
+  const int count = kSessionHeadColumns - 1 + static_cast<int>(kMetricFields.size());
+  for (int i = 1; i <= count; ++i) values += (i > 1 ? ", " : "") + Placeholder(dialect, i);
+  return "INSERT INTO sessions (" + columns + ") VALUES (" + values + ") RETURNING id";
+}
+
+std::string InsertTraineeSql(SqlDialect dialect) {
+  return "INSERT INTO trainees (trainee_id) VALUES (" + Placeholder(dialect, 1) + ") ON CONFLICT DO NOTHING";
+}
+
+std::string SessionSelectColumns() {
+  std::string columns = "id, trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path";
+  for (const auto& field : kMetricFields) columns += ", " + Quoted(field.name);
+  return columns;
+}
+
+}  // namespace vesica::app

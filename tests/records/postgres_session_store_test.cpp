@@ -1,0 +1,84 @@
+// What only the PostgreSQL backend has: connection strings, whose passwords never reach a
+// message, and a server that can go away under a running trainer.
+
+#include "app/records/postgres_session_store.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/records/postgres_test_server.h"
+#include "tests/records/sample_records.h"
+
+namespace vesica::app {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using ::testing::Not;
+using testing::PostgresTestServer;
+using testing::SampleRecord;
+using ::testing::ThrowsMessage;
+
+TEST(MaskPasswordTest, HidesEveryFormOfPassword) {
+  EXPECT_EQ(MaskPassword("postgresql://ana:s3cret@db.example:5432/vesica"),
+            "postgresql://ana:***@db.example:5432/vesica");
+  EXPECT_EQ(MaskPassword("postgres://ana:s3cret@db/vesica"), "postgres://ana:***@db/vesica");
+  EXPECT_EQ(MaskPassword("postgresql://db/vesica?user=ana&password=s3cret&sslmode=require"),
+            "postgresql://db/vesica?user=ana&password=***&sslmode=require");
+  EXPECT_EQ(MaskPassword("host=db password=s3cret dbname=vesica"), "host=db password=*** dbname=vesica");
+  EXPECT_EQ(MaskPassword("host=db password = 's3 cr\\'et' dbname=vesica"), "host=db password = *** dbname=vesica");
+}
+
+TEST(MaskPasswordTest, LeavesStringsWithoutPasswordAlone) {
+  EXPECT_EQ(MaskPassword("postgresql://ana@db:5432/vesica"), "postgresql://ana@db:5432/vesica");
+  EXPECT_EQ(MaskPassword("host=/run/postgresql dbname=vesica"), "host=/run/postgresql dbname=vesica");
+}
+
+TEST(PostgresSessionStoreTest, UnreachableServerFailsNamingMaskedLocation) {
+  const std::string location = "host=/nonexistent-vesica-socket-dir port=5432 user=ana password=s3cret dbname=vesica";
+  EXPECT_THAT([&] { PostgresSessionStore store(location); },
+              ThrowsMessage<RecordsError>(AllOf(
+                  HasSubstr("session database host=/nonexistent-vesica-socket-dir port=5432 user=ana password=*** "
+                            "dbname=vesica: connect: "),
+                  Not(HasSubstr("s3cret")))));
+}
+
+TEST(PostgresSessionStoreTest, MalformedConnectionStringFailsNamingIt) {
+  EXPECT_THAT([] { PostgresSessionStore store("host=db password=s3cret dbname"); },
+              ThrowsMessage<RecordsError>(AllOf(HasSubstr("session database host=db password=*** dbname: bad "
+                                                          "connection string: "),
+                                                Not(HasSubstr("s3cret")))));
+  EXPECT_THAT([] { PostgresSessionStore store("postgresql://ana:s3cret@db/vesica?nosuchoption=1"); },
+              ThrowsMessage<RecordsError>(AllOf(HasSubstr("postgresql://ana:***@db/vesica?nosuchoption=1: bad "
+                                                          "connection string: "),
+                                                HasSubstr("nosuchoption"), Not(HasSubstr("s3cret")))));
+}
+
+TEST(PostgresSessionStoreTest, ChosenByOpenSessionStoreForAConnectionString) {
+  auto& server = PostgresTestServer::Shared();
+  ASSERT_TRUE(server.running()) << server.error();
+  const std::string location = server.NewDatabase();
+  const auto store = OpenSessionStore(location);
+  EXPECT_NE(dynamic_cast<PostgresSessionStore*>(store.get()), nullptr);
+  store->Add(SampleRecord(0));
+  // The rows are in the server's tables, not somewhere else.
+  EXPECT_EQ(PostgresTestServer::Query(location, "SELECT count(*) FROM sessions"), "1");
+  EXPECT_EQ(PostgresTestServer::Query(location, "SELECT version FROM vesica_schema"),
+            std::to_string(kSessionSchemaVersion));
+}
+
+TEST(PostgresSessionStoreTest, ServerGoneFailsEachCallWithRecordsError) {
+  PostgresTestServer server;  // its own: this test stops it
+  ASSERT_TRUE(server.running()) << server.error();
+  const std::string location = server.NewDatabase();
+  PostgresSessionStore store(location);
+  store.Add(SampleRecord(0));
+  server.Stop();
+  EXPECT_THAT([&] { store.Add(SampleRecord(1)); },
+              ThrowsMessage<RecordsError>(HasSubstr("session database " + location)));
+  EXPECT_THAT([&] { store.List("trainee-7"); }, ThrowsMessage<RecordsError>(HasSubstr("list sessions")));
+  EXPECT_THAT([&] { store.CheckIntegrity(); }, ThrowsMessage<RecordsError>(HasSubstr("session database " + location)));
+}
+
+}  // namespace
+}  // namespace vesica::app

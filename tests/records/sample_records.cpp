@@ -1,0 +1,33 @@
+#include "tests/records/sample_records.h"
+
+namespace vesica::app::testing {
+
+SessionRecord SampleRecord(int index, const std::string& trainee_id) {
+  SessionRecord r;
+  r.trainee_id = trainee_id;
+  r.scenario = "cholecystectomy-" + std::to_string(index % 3);
+  r.station = "station-" + std::to_string(index % 2 + 1);
+  r.started_unix_s = 1795406400 + 600 * static_cast<std::int64_t>(index);
+  r.ended_unix_s = r.started_unix_s + 300 + index;
+  r.input_recording_path = "/var/lib/vesica/recordings/" + std::to_string(index) + ".rec";
+  SessionMetrics& m = r.metrics;
+  const double x = index + 1;
+  m.duration_s = 299.75 + x / 3.0;
+  m.path_length_left_m = 1.0 / 7.0 * x;
+  m.path_length_right_m = 0.1 * x + 1e-12;
+  m.slips = 3 + index;
+  m.cautery_on_s = 41.25 / x;
+  m.liver_damage_m2 = 1.5e-5 * x;
+  m.gallbladder_damage_m2 = 2.0 / 3.0 * 1e-6 * x;
+  m.max_force_N = 4.2 + x / 9.0;
+  m.mean_force_N = 0.7 + x / 11.0;
+  m.tissue_removed_fraction = x / (x + 1.0);
+  m.springs_cut = 200 + index;
+  m.springs_total = 225 + index;
+  m.gallbladder_free = index % 2 == 0;
+  m.perforation = index % 3 == 1;
+  m.success = m.gallbladder_free && !m.perforation;
+  return r;
+}
+
+}  // namespace vesica::app::testing

@@ -1,0 +1,118 @@
+// The CSV export, read back with an independent RFC 4180 reader and compared value by value.
+
+#include "app/records/session_csv.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <sstream>
+#include <variant>
+
+#include "app/records/metric_fields.h"
+#include "app/records/session_store.h"
+#include "tests/records/csv_reader.h"
+#include "tests/records/sample_records.h"
+#include "tests/records/temp_dir.h"
+
+namespace vesica::app {
+namespace {
+
+using ::testing::ElementsAre;
+using testing::ReadCsv;
+using testing::SampleRecord;
+using testing::TempDir;
+
+// Checks one CSV row against the session it came from; doubles parse back bit for bit.
+void ExpectRowIs(const std::vector<std::string>& row, const StoredSession& session) {
+  const auto& r = session.record;
+  ASSERT_EQ(row.size(), 7 + kMetricFields.size());
+  EXPECT_EQ(row[0], std::to_string(session.id));
+  EXPECT_EQ(row[1], r.trainee_id);
+  EXPECT_EQ(row[2], r.scenario);
+  EXPECT_EQ(row[3], r.station);
+  EXPECT_EQ(row[4], FormatUtcIso8601(r.started_unix_s));
+  EXPECT_EQ(row[5], FormatUtcIso8601(r.ended_unix_s));
+  EXPECT_EQ(row[6], r.input_recording_path);
+  std::size_t column = 7;
+  for (const auto& field : kMetricFields) {
+    const std::string& text = row[column++];
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_cvref_t<decltype(r.metrics.*member)>;
+          if constexpr (std::is_same_v<T, double>) {
+            char* end = nullptr;
+            EXPECT_EQ(std::strtod(text.c_str(), &end), r.metrics.*member) << field.name << " = " << text;
+            EXPECT_EQ(*end, '\0') << field.name;
+          } else if constexpr (std::is_same_v<T, bool>) {
+            EXPECT_EQ(text, r.metrics.*member ? "1" : "0") << field.name;
+          } else {
+            EXPECT_EQ(text, std::to_string(r.metrics.*member)) << field.name;
+          }
+        },
+        field.member);
+  }
+}
+
+TEST(FormatUtcIso8601Test, KnownInstants) {
+  EXPECT_EQ(FormatUtcIso8601(0), "1970-01-01T00:00:00Z");
+  EXPECT_EQ(FormatUtcIso8601(951782400), "2000-02-29T00:00:00Z");
+  EXPECT_EQ(FormatUtcIso8601(1795406400 + 3723), "2026-11-23T05:02:03Z");
+  EXPECT_EQ(FormatUtcIso8601(-1), "1969-12-31T23:59:59Z");
+}
+
+TEST(SessionCsvTest, HeaderIsFixedColumnsThenEveryMetric) {
+  EXPECT_THAT(
+      SessionCsvColumns(),
+      ElementsAre("id", "trainee_id", "scenario", "station", "started_utc", "ended_utc", "input_recording_path",
+                  "duration_s", "path_length_left_m", "path_length_right_m", "slips", "cautery_on_s", "liver_damage_m2",
+                  "gallbladder_damage_m2", "max_force_N", "mean_force_N", "tissue_removed_fraction", "springs_cut",
+                  "springs_total", "gallbladder_free", "perforation", "success"));
+}
+
+TEST(SessionCsvTest, EmptyListIsHeaderOnly) {
+  std::ostringstream out;
+  WriteSessionsCsv({}, out);
+  const auto rows = ReadCsv(out.str());
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0], SessionCsvColumns());
+}
+
+TEST(SessionCsvTest, RowsReadBackToTheSameValuesIncludingAwkwardText) {
+  std::vector<StoredSession> sessions{{7, SampleRecord(0)}, {12, SampleRecord(1)}, {13, SampleRecord(2)}};
+  sessions[1].record.scenario = "fundus-first, \"hard\" variant";
+  sessions[1].record.station = "line one\nline two";
+  sessions[2].record.input_recording_path = "/recordings/a,b\"c\".rec";
+  std::ostringstream out;
+  WriteSessionsCsv(sessions, out);
+  const auto rows = ReadCsv(out.str());
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0], SessionCsvColumns());
+  for (std::size_t i = 0; i < sessions.size(); ++i) {
+    SCOPED_TRACE("row " + std::to_string(i + 1));
+    ExpectRowIs(rows[i + 1], sessions[i]);
+  }
+  // A literal check of one plain row, so the format cannot drift unnoticed.
+  EXPECT_EQ(rows[1][4], "2026-11-23T04:00:00Z");
+  EXPECT_EQ(rows[1][7], "300.0833333333333");  // duration_s = 299.75 + 1/3
+}
+
+TEST(SessionCsvTest, StoreExportIsTheTraineesSessionsInListOrder) {
+  TempDir dir;
+  const auto store = OpenSessionStore((dir.path() / "sessions.sqlite").string());
+  for (int i : {3, 0, 2}) store->Add(SampleRecord(i, "ana"));
+  store->Add(SampleRecord(1, "ben"));
+  std::ostringstream out;
+  store->ExportCsv("ana", out);
+  const auto rows = ReadCsv(out.str());
+  const auto listed = store->List("ana");
+  ASSERT_EQ(rows.size(), 1 + listed.size());
+  ASSERT_EQ(listed.size(), 3u);
+  for (std::size_t i = 0; i < listed.size(); ++i) ExpectRowIs(rows[i + 1], listed[i]);
+  // Oldest first: the learning curve reads top to bottom.
+  EXPECT_EQ(rows[1][4], FormatUtcIso8601(SampleRecord(0).started_unix_s));
+  EXPECT_EQ(rows[3][4], FormatUtcIso8601(SampleRecord(3).started_unix_s));
+}
+
+}  // namespace
+}  // namespace vesica::app
