@@ -103,6 +103,13 @@ const bool kRegistered = [] {
                                  BM_FemStep, ElementModel::kCorotational, LinearSolverKind::kCholmod, nodes, 10)
         ->Unit(benchmark::kMillisecond)
         ->MinTime(0.5);
+  // PCG (tolerance 1e-8, at most 20 iterations) preconditioned by the rest factor turned per node
+  // into the current frame (LinearSolverKind::kRotatedFactorPcg).
+  for (int nodes : {310, 2865})
+    benchmark::RegisterBenchmark(("BM_FemStep/corotational/rotated_factor/" + std::to_string(nodes)).c_str(),
+                                 BM_FemStep, ElementModel::kCorotational, LinearSolverKind::kRotatedFactorPcg, nodes, 1)
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(0.5);
   for (int nodes : kTable3Nodes)
     benchmark::RegisterBenchmark(("BM_FemPreprocess/" + std::to_string(nodes)).c_str(), BM_FemPreprocess, nodes)
         ->Unit(benchmark::kMillisecond)

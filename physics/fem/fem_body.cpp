@@ -1,5 +1,6 @@
 #include "physics/fem/fem_body.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <sstream>
 
@@ -28,6 +29,13 @@ struct FemBody::Workspace {
   bool factor_matches_system = false;
   bool force_refactor = false;  // attachment changed: refactorise even between refreshes
   int steps_since_factor = 0;
+  // kRotatedFactorPcg: factor of the rest system and the nodes' rotations (quaternions x y z w
+  // and matrices) that turn it into the current frame.
+  CholmodSolver rest_factor;
+  std::vector<Eigen::Vector4d> node_quaternions;
+  std::vector<Eigen::Matrix3d> node_rotations;
+  std::vector<char> node_has_fixed_axis;
+  Eigen::VectorXd rotated_residual, rotated_solution;
 };
 
 FemBody::FemBody(std::shared_ptr<const FemModel> model)
@@ -108,26 +116,63 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
                                           &w.internal_force, &w.rotations);
   w.system_assembled = true;
   if (linear && w.linear_system_built) return;
+  SystemValuesFromTangent(w.tangent_values, w.system_values);
+  w.linear_system_built = linear;
+  w.factor_matches_system = false;
+}
+
+void FemBody::SystemValuesFromTangent(const Eigen::VectorXd& tangent, Eigen::VectorXd& system) const {
+  const FemModel& m = *model_;
+  const FemSettings& s = m.settings;
+  const Workspace& w = *work_;
   const SystemCoefficients c = IntegratorCoefficients(s);
   const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;
   const double stiffness_scale = 1.0 + c.damping * s.rayleigh_stiffness_s;
-  w.system_values = stiffness_scale * w.tangent_values;
+  system = stiffness_scale * tangent;
   if (m.uses_consistent_mass()) {
-    w.system_values += mass_scale * m.consistent_mass_values;
+    system += mass_scale * m.consistent_mass_values;
   } else {
-    for (int i = 0; i < m.num_dofs(); ++i)
-      w.system_values[m.pattern.diagonal_slot[i]] += mass_scale * m.lumped_mass_kg[i];
+    for (int i = 0; i < m.num_dofs(); ++i) system[m.pattern.diagonal_slot[i]] += mass_scale * m.lumped_mass_kg[i];
   }
   if (w.attachment.any) {
     // Spring increments like K du and D v+: k + c_D d on the diagonal.
     const Eigen::VectorXd& k = w.attachment.stiffness_N_per_m;
     const Eigen::VectorXd& d = w.attachment.damping_Ns_per_m;
-    for (int i = 0; i < m.num_dofs(); ++i) w.system_values[m.pattern.diagonal_slot[i]] += k[i] + c.damping * d[i];
+    for (int i = 0; i < m.num_dofs(); ++i) system[m.pattern.diagonal_slot[i]] += k[i] + c.damping * d[i];
   }
-  for (int k : m.constrained_slots) w.system_values[k] = 0.0;
-  for (int i : m.fixed_dofs) w.system_values[m.pattern.diagonal_slot[i]] = 1.0;
-  w.linear_system_built = linear;
-  w.factor_matches_system = false;
+  for (int k : m.constrained_slots) system[k] = 0.0;
+  for (int i : m.fixed_dofs) system[m.pattern.diagonal_slot[i]] = 1.0;
+}
+
+void FemBody::UpdateNodeRotations() {
+  // Each node turns with the volume-weighted mean of its elements' quaternions (signs aligned with
+  // the node's last quaternion, so q and -q do not cancel). Nodes with a fixed axis keep R = I:
+  // the preconditioner must not mix a fixed dof with free ones.
+  const FemModel& m = *model_;
+  Workspace& w = *work_;
+  const int nodes = m.num_nodes();
+  if (static_cast<int>(w.node_quaternions.size()) != nodes) {
+    w.node_quaternions.assign(nodes, Eigen::Vector4d(0, 0, 0, 1));
+    w.node_rotations.assign(nodes, Eigen::Matrix3d::Identity());
+    w.node_has_fixed_axis.assign(nodes, 0);
+    for (int i : m.fixed_dofs) w.node_has_fixed_axis[i / 3] = 1;
+  }
+  if (static_cast<int>(w.rotations.size()) != m.rest_mesh.num_tets()) return;  // linear body: R = I
+  std::vector<Eigen::Vector4d> sum(nodes, Eigen::Vector4d::Zero());
+  for (int t = 0; t < m.rest_mesh.num_tets(); ++t) {
+    const Eigen::Vector4d& q = w.rotations[t];
+    const double volume = m.elements[t].rest_volume_m3;
+    for (int a = 0; a < 4; ++a) {
+      const int n = m.rest_mesh.tets(t, a);
+      sum[n] += (q.dot(w.node_quaternions[n]) < 0.0 ? -volume : volume) * q;
+    }
+  }
+  for (int n = 0; n < nodes; ++n) {
+    const double norm = sum[n].norm();
+    if (w.node_has_fixed_axis[n] || !(norm > 0.0)) continue;
+    w.node_quaternions[n] = sum[n] / norm;
+    w.node_rotations[n] = Eigen::Quaterniond(w.node_quaternions[n]).toRotationMatrix();
+  }
 }
 
 bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, double tolerance, int max_iterations,
@@ -158,6 +203,29 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
     r = SolvePcg(
         m.pattern, w.system_values, rhs, du,
         [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { w.cholmod.Solve(res, z); }, tolerance, max_iterations);
+  } else if (s.solver == LinearSolverKind::kRotatedFactorPcg) {
+    if (!w.rest_factor.factorized() || w.force_refactor) {
+      Eigen::VectorXd rest_system;
+      SystemValuesFromTangent(m.linear_stiffness_values, rest_system);
+      if (!w.rest_factor.Factorize(m.pattern, rest_system)) return false;
+      w.force_refactor = false;
+    }
+    UpdateNodeRotations();
+    const int nodes = m.num_nodes();
+    du = w.last_increment;
+    r = SolvePcg(
+        m.pattern, w.system_values, rhs, du,
+        [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
+          // z = R S0^-1 R^T res, R block diagonal (one rotation per node).
+          w.rotated_residual.resize(res.size());
+          for (int n = 0; n < nodes; ++n)
+            w.rotated_residual.segment<3>(3 * n) = w.node_rotations[n].transpose() * res.segment<3>(3 * n);
+          w.rest_factor.Solve(w.rotated_residual, w.rotated_solution);
+          z.resize(res.size());
+          for (int n = 0; n < nodes; ++n)
+            z.segment<3>(3 * n) = w.node_rotations[n] * w.rotated_solution.segment<3>(3 * n);
+        },
+        tolerance, max_iterations);
   } else {
     w.jacobi.Compute(m.pattern, w.system_values);
     du = w.last_increment;

@@ -67,6 +67,8 @@ class FemBody {
  private:
   struct Workspace;
   void AssembleSystem(const Eigen::VectorXd& u);
+  void SystemValuesFromTangent(const Eigen::VectorXd& tangent, Eigen::VectorXd& system) const;
+  void UpdateNodeRotations();
   bool SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, double tolerance, int max_iterations,
                    StepReport* report);
   void DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;

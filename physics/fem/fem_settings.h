@@ -22,6 +22,12 @@ enum class TimeIntegrator {
 enum class LinearSolverKind {
   kPcg,      ///< conjugate gradient, block-Jacobi preconditioned (the paper's PCG)
   kCholmod,  ///< sparse Cholesky (SuiteSparse CHOLMOD); see cholmod_refresh_steps
+  /// PCG on the step's system, preconditioned by a CHOLMOD factor of the rest system S0 (factorised
+  /// once, again only when the attachment springs change) turned into the current frame per node:
+  /// z = R S0^-1 R^T r, R the nodes' rotations averaged from their elements' (warped stiffness as
+  /// a preconditioner). Converges in a few iterations under large rotations; pcg_relative_tolerance
+  /// and pcg_max_iterations apply. A linear body converges in one iteration.
+  kRotatedFactorPcg,
 };
 
 struct FemSettings {
