@@ -3,6 +3,8 @@
 #include <pwd.h>
 #include <unistd.h>
 
+#include <cstdlib>
+
 #include "app/records/session_store.h"
 
 namespace vesica::app {
@@ -33,6 +35,10 @@ std::filesystem::path DefaultSessionDatabasePath(const EnvLookup& getenv) {
 std::string DefaultSessionStoreLocation(const EnvLookup& getenv) {
   if (const char* location = getenv("VESICA_RECORDS_DB"); NonEmpty(location)) return location;
   return DefaultSessionDatabasePath(getenv).string();
+}
+
+std::string DefaultSessionStoreLocation() {
+  return DefaultSessionStoreLocation([](const char* name) { return std::getenv(name); });
 }
 
 }  // namespace vesica::app

@@ -20,4 +20,7 @@ std::filesystem::path DefaultSessionDatabasePath(const EnvLookup& getenv);
 /// this is how a station is pointed at a shared server), else DefaultSessionDatabasePath.
 std::string DefaultSessionStoreLocation(const EnvLookup& getenv);
 
+/// DefaultSessionStoreLocation of this process's environment (std::getenv).
+std::string DefaultSessionStoreLocation();
+
 }  // namespace vesica::app

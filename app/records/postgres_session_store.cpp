@@ -21,9 +21,18 @@ struct ConnDeleter {
   void operator()(PGconn* conn) const { PQfinish(conn); }
 };
 
-std::string Trimmed(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  return text;
+// libpq's messages span lines ("...failed: ...\n\tIs the server running..."): one line for logs.
+std::string OneLine(const std::string& text) {
+  std::string line;
+  for (char c : text) {
+    if (c == '\n' || c == '\t') {
+      if (!line.empty() && line.back() != ' ') line += ' ';
+    } else {
+      line += c;
+    }
+  }
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  return line;
 }
 
 // Any one server/session lock id; held only while migrating.
@@ -39,7 +48,7 @@ struct PgConnection {
   std::unique_ptr<PGconn, ConnDeleter> conn;
 
   [[noreturn]] void Fail(const std::string& step, const std::string& reason) const {
-    throw RecordsError("session database " + location + ": " + step + ": " + Trimmed(reason));
+    throw RecordsError("session database " + location + ": " + step + ": " + OneLine(reason));
   }
 
   // A connection the server dropped (restart, admin, network) is re-established once per call.

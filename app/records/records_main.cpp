@@ -5,7 +5,6 @@
 // else $XDG_DATA_HOME/vesica/sessions.sqlite (see docs/records.md).
 
 #include <CLI/CLI.hpp>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -52,8 +51,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(cli, argc, argv);
 
   try {
-    if (location.empty())
-      location = vesica::app::DefaultSessionStoreLocation([](const char* name) { return std::getenv(name); });
+    if (location.empty()) location = vesica::app::DefaultSessionStoreLocation();
     // Opening creates a missing SQLite file; a mistyped --db should fail, not list nothing.
     if (!vesica::app::IsConnectionString(location) && !std::filesystem::exists(location)) {
       throw vesica::app::RecordsError("session database " + location + ": no such file (no session recorded there)");

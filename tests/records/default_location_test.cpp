@@ -75,6 +75,7 @@ TEST(DefaultLocationTest, RealEnvironmentXdgDataHomeGetsAWalDatabase) {
 TEST(DefaultLocationTest, RealEnvironmentFallsBackToHome) {
   TempDir dir;
   ScopedEnv env({{"XDG_DATA_HOME", std::nullopt}, {"HOME", dir.path().string()}, {"VESICA_RECORDS_DB", std::nullopt}});
+  EXPECT_EQ(DefaultSessionStoreLocation(), (dir.path() / ".local/share/vesica/sessions.sqlite").string());
   OpenSessionStore(DefaultSessionStoreLocation(RealEnv))->Add(SampleRecord(0));
   EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / ".local/share/vesica/sessions.sqlite"));
 }

@@ -70,7 +70,8 @@ PostgresTestServer::PostgresTestServer() {
   std::string why;
   const std::string data = dir + "/data";
   const std::string cached = TemplatePath();
-  if (UsableTemplate(cached)) {
+  const bool from_template = UsableTemplate(cached);
+  if (from_template) {
     if (!RunAsPostgres({"/bin/cp", "-a", cached, data}, dir + "/cp.log", why)) {
       error_ = "copying the cached cluster " + cached + " failed (" + why + "):\n" + Tail(dir + "/cp.log");
       return;
@@ -97,7 +98,8 @@ PostgresTestServer::PostgresTestServer() {
                       server_options, "start"},
                      dir + "/pg_ctl.log", why)) {
     error_ = "pg_ctl start failed (" + why + "):\n" + Tail(dir + "/pg_ctl.log") + "\nserver log:\n" +
-             Tail(dir + "/server.log");
+             Tail(dir + "/server.log") +
+             (from_template ? "\n(the cluster was a copy of " + cached + "; remove that folder if it is broken)" : "");
     return;
   }
   running_ = true;
@@ -121,7 +123,10 @@ bool PostgresTestServer::UsableTemplate(const std::string& path) {
   struct stat info {};
   if (lstat(path.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) return false;
   if (info.st_uid != ServerUid() || (info.st_mode & 077) != 0) return false;
-  return std::filesystem::exists(std::filesystem::path(path) / "PG_VERSION");
+  for (const char* file : {"PG_VERSION", "postgresql.conf", "global/pg_control"}) {
+    if (!std::filesystem::exists(std::filesystem::path(path) / file)) return false;
+  }
+  return true;
 }
 
 PostgresTestServer& PostgresTestServer::Shared() {
