@@ -17,7 +17,8 @@ void ValidateDissectionSettings(const DissectionSettings& s) {
   Require(s.springs.stiffness >= 0 && s.springs.damping >= 0, "springs", "stiffness and damping must be >= 0");
   Require(std::isfinite(s.attach_offset_m) && s.attach_offset_m > 0, "attach_offset_m", "must be > 0");
   Require(s.grasp_compliance_m_per_N >= 0, "grasp_compliance_m_per_N", "must be >= 0");
-  Require(s.contact_compliance_m_per_N >= 0, "contact_compliance_m_per_N", "must be >= 0");
+  Require(s.contact_compliance_m_per_N > 0, "contact_compliance_m_per_N", "must be > 0");
+  Require(s.max_correction_per_step_m > 0, "max_correction_per_step_m", "must be > 0");
   Require(s.contact_margin_m > 0, "contact_margin_m", "must be > 0");
   Require(s.touch_tolerance_m >= 0, "touch_tolerance_m", "must be >= 0");
   Require(s.grasp_reach_m >= 0, "grasp_reach_m", "must be >= 0");

@@ -27,8 +27,15 @@ struct DissectionSettings {
   SpringMaterial springs{20.0, 0.05};  ///< connective tissue, per spring (N/m, N s/m)
   double attach_offset_m = 0.005;      ///< paper §2.4: gallbladder offset toward the liver, > 0
   GraspSettings grasp;
-  double grasp_compliance_m_per_N = 2e-3;   ///< W_soft of grasp rows (eq. 6): jaws and tissue give, >= 0
-  double contact_compliance_m_per_N = 0.0;  ///< W_soft of contact rows, >= 0
+  double grasp_compliance_m_per_N = 2e-3;  ///< W_soft of grasp rows (eq. 6): jaws and tissue give, >= 0
+  /// W_soft of contact rows, > 0: the instrument tip and the tissue's surface layer give a little
+  /// (10 kN/m), which also keeps a contact on the liver's fixed region (no compliance) solvable.
+  double contact_compliance_m_per_N = 1e-4;
+  /// The most a contact may close of a penetration in one step, > 0 (m): a tool that starts or
+  /// jumps deep into tissue pushes it out over several steps (at most this / h, 0.2 m/s by
+  /// default) instead of flinging it out in one. Grasp rows are not clamped (the slip distance
+  /// bounds them).
+  double max_correction_per_step_m = 0.001;
   double contact_margin_m = 0.003;    ///< rays reach this far past the tip, so a touch is seen before penetration, > 0
   double touch_tolerance_m = 0.0005;  ///< a tool within this gap of a surface touches it (cautery), >= 0
   double grasp_reach_m = 0.003;       ///< closing jaws within this gap of the gallbladder take hold, >= 0

@@ -1,0 +1,105 @@
+// vesica-replay: runs a recorded two-handed session through the dissection scene without a
+// window and prints the trainee's metrics; optionally writes a PNG sequence of the laparoscope
+// view (needs an X display: run under xvfb-run on a headless machine).
+//   vesica-replay [-s SCENARIO] RECORDING [--png-dir DIR --png-every-s 0.5]
+
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <memory>
+
+#include "app/render/laparoscope_view.h"
+#include "app/render/scene_meshes.h"
+#include "app/replay/session_replay.h"
+#include "app/replay/state_digest.h"
+#include "app/scenario/scenario_loader.h"
+#include "app/session/dissection_setup.h"
+#include "device/input/input_recording.h"
+#include "device/input/recording_error.h"
+
+int main(int argc, char** argv) {
+  CLI::App cli{"Vesica: replay a recorded dissection headless and print the trainee metrics"};
+  std::string scenario_path = vesica::app::DefaultScenarioPath().string();
+  std::string recording_path, png_dir;
+  double png_every_s = 0.5;
+  int width = 640, height = 360;
+  bool trace = false;
+  cli.add_option("recording", recording_path, "input recording (docs/recording.md)")->required();
+  cli.add_option("-s,--scenario", scenario_path, "scenario file (TOML)")->capture_default_str();
+  cli.add_option("--png-dir", png_dir, "write the laparoscope view as PNGs into this folder");
+  cli.add_option("--png-every-s", png_every_s, "session time between PNGs")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cli.add_option("--width", width, "PNG width in pixels")->check(CLI::Range(64, 4096));
+  cli.add_option("--height", height, "PNG height in pixels")->check(CLI::Range(64, 4096));
+  cli.add_flag("--trace", trace, "print one line per physics step (contacts, forces, energy) to stderr");
+  CLI11_PARSE(cli, argc, argv);
+
+  try {
+    vesica::device::ReplayInput input(vesica::device::ReadInputRecording(recording_path));
+    const vesica::app::Scenario scenario = vesica::app::LoadScenario(scenario_path);
+    const vesica::app::SceneMeshes meshes = vesica::app::LoadSceneMeshes(scenario);
+    const auto model = vesica::app::BuildDissectionModelFor(scenario, meshes);
+    spdlog::info(
+        "scenario '{}': liver {} nodes, gallbladder {} nodes, {} springs, {} membrane elements; recording {:.2f} s",
+        scenario.name, model->liver->num_nodes(), model->gallbladder->rest_mesh.num_vertices(),
+        model->tissue.springs.size(), model->tissue.membrane.triangles.rows(), input.duration_s());
+    vesica::app::DissectionSession session(model, vesica::app::DefaultCauteryParams());
+
+    std::unique_ptr<vesica::app::LaparoscopeView> view;
+    if (!png_dir.empty()) {
+      std::filesystem::create_directories(png_dir);
+      view = std::make_unique<vesica::app::LaparoscopeView>(scenario, meshes);
+    }
+    int png_index = 0;
+    double next_png_s = 0;
+    const vesica::app::ReplayOutcome outcome =
+        vesica::app::RunReplay(session, input, [&](const vesica::app::DissectionSession& s, const auto& r) {
+          if (trace) {
+            std::fprintf(stderr,
+                         "t %.3f rows %d touch %d/%d gap %.2e/%.2e f %.3f/%.3f grasp %d mem %zu cut %d E %.3e\n",
+                         s.time_s(), r.physics.constraint_rows, static_cast<int>(r.physics.touches[0].surface),
+                         static_cast<int>(r.physics.touches[1].surface), r.physics.touches[0].gap_m,
+                         r.physics.touches[1].gap_m, r.physics.tool_force_N[0].norm(), r.physics.tool_force_N[1].norm(),
+                         static_cast<int>(s.scene().grasp().state()), r.physics.touches[1].membrane_elements.size(),
+                         r.springs_cut, s.scene().Energy());
+          }
+          if (!view || s.time_s() + 1e-9 < next_png_s) return;
+          view->Update(s.MakeRenderFrame());
+          char name[32];
+          std::snprintf(name, sizeof name, "frame_%05d.png", png_index++);
+          vesica::app::RenderToPng(*view, width, height, 1, std::filesystem::path(png_dir) / name);
+          next_png_s += png_every_s;
+        });
+
+    const vesica::app::SessionMetrics m = session.metrics();
+    std::printf("session time          %.3f s (%ld steps)\n", m.duration_s, outcome.steps);
+    std::printf("gallbladder free      %s", m.gallbladder_free ? "yes" : "no");
+    if (outcome.gallbladder_free_at_s >= 0) std::printf(" (at %.3f s)", outcome.gallbladder_free_at_s);
+    std::printf("\nsprings cut           %d of %d\n", m.springs_cut, m.springs_total);
+    std::printf("tissue removed        %.1f %%\n", 100.0 * m.tissue_removed_fraction);
+    std::printf("slips                 %d\n", m.slips);
+    std::printf("cautery on            %.3f s\n", m.cautery_on_s);
+    std::printf("liver damage          %.2f mm^2\n", m.liver_damage_m2 * 1e6);
+    std::printf("gallbladder damage    %.2f mm^2%s\n", m.gallbladder_damage_m2 * 1e6,
+                m.perforation ? " (perforated)" : "");
+    std::printf("max force             %.3f N (mean in contact %.3f N)\n", m.max_force_N, m.mean_force_N);
+    std::printf("path length           left %.3f m, right %.3f m\n", m.path_length_left_m, m.path_length_right_m);
+    std::printf("success               %s\n", m.success ? "yes" : "no");
+    std::printf("finite                %s\n", outcome.finite ? "yes" : "no");
+    std::printf("max energy            %.6g J\n", outcome.max_energy_J);
+    std::printf("rejected fem steps    %ld\n", outcome.rejected_fem_steps);
+    std::printf("state digest          %s\n", vesica::app::FormatDigest(vesica::app::StateDigest(session)).c_str());
+    if (view) std::printf("pngs                  %d in %s\n", png_index, png_dir.c_str());
+    return outcome.finite ? 0 : 3;
+  } catch (const vesica::device::RecordingError& e) {
+    spdlog::error("recording rejected: {}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+}

@@ -1,0 +1,31 @@
+#pragma once
+// A scripted two-handed dissection, planned step by step from the live scene (closed loop), the
+// way the committed demo recording data/recordings/dissection.csv was made: the grasper takes the
+// fundus (the gallbladder surface point farthest from its bed that faces the grasper's trocar)
+// and retracts it away from the liver, further as the springs go; the hook burns the membrane
+// spring by spring from the fundus end to the neck with the pedal down; finally the grasper lets
+// go and both instruments withdraw. Tips move at bounded speed; the jaw and pedal switch.
+
+#include <vector>
+
+#include "app/session/dissection_session.h"
+#include "device/input/input_frame.h"
+
+namespace vesica::app {
+
+struct ScriptedSurgeonSettings {
+  double tip_speed_m_per_s = 0.04;  ///< neither tip moves faster
+  double retraction_m = 0.012;      ///< grasp point pulled this far from the bed at first ...
+  double retraction_gain_m = 0.02;  ///< ... plus this times the fraction of springs cut
+  double burn_distance_m = 0.0015;  ///< pedal down once the hook tip is this close to its target
+  double spring_timeout_s = 2.0;    ///< give up on a spring after this long, come back later
+  double max_session_s = 240.0;     ///< stop (unfinished) after this long
+  double release_hold_s = 0.5;      ///< after the release, before the end
+};
+
+/// Drives `session` until the gallbladder is free and released (or max_session_s), returning the
+/// input frame of every step (time = session time at the start of the step).
+std::vector<device::InputFrame> RunScriptedDissection(DissectionSession& session,
+                                                      const ScriptedSurgeonSettings& settings = {});
+
+}  // namespace vesica::app

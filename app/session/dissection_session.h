@@ -1,0 +1,61 @@
+#pragma once
+// One trainee's dissection: the coupled physics scene, the cautery effects and the metrics,
+// advanced together by one input frame per physics step (ARCHITECTURE.md's step order, then
+// fx). The hook's pedal burns what its tip touches: membrane elements within its radius first
+// (they fade and, once all of a spring's are gone, the spring is cut), else the liver or the
+// gallbladder wall (damage). Deterministic: the same inputs give bit-identical states.
+
+#include <memory>
+
+#include "app/records/session_metrics.h"
+#include "app/render/render_frame.h"
+#include "device/input/input_frame.h"
+#include "fx/cautery_effects.h"
+#include "physics/scene/dissection_scene.h"
+
+namespace vesica::app {
+
+struct SessionStepReport {
+  physics::DissectionStepReport physics;
+  fx::CauteryContact cautery;
+  int springs_cut = 0;  ///< springs removed this step
+};
+
+class DissectionSession {
+ public:
+  DissectionSession(std::shared_ptr<const physics::DissectionModel> model, const fx::CauteryParams& cautery);
+
+  /// Advances one physics step with both instruments as in `input` (its time is not used: the
+  /// session clock is steps x h). Throws std::invalid_argument (state unchanged) for a bad pose.
+  SessionStepReport Step(const device::InputFrame& input);
+
+  /// Metrics so far; success = gallbladder free without perforation.
+  SessionMetrics metrics() const;
+  /// The snapshot the laparoscope view draws (instrument count 2, in scenario order grasper, hook).
+  RenderFrame MakeRenderFrame() const;
+
+  const physics::DissectionScene& scene() const { return scene_; }
+  const fx::CauteryEffects& cautery() const { return cautery_; }
+  double time_s() const { return scene_.time_s(); }
+  bool gallbladder_free() const { return scene_.gallbladder_free(); }
+  /// The gallbladder wall counts as perforated once an element is burnt to this level.
+  static constexpr double kPerforationLevel = 0.99;
+
+ private:
+  fx::CauteryContact CauteryContactFor(const physics::ToolTouch& touch, bool pedal) const;
+
+  std::shared_ptr<const physics::DissectionModel> model_;
+  physics::DissectionScene scene_;
+  fx::CauteryEffects cautery_;
+  std::size_t spring_cuts_applied_ = 0;
+  std::array<device::InstrumentInput, 2> last_input_{};
+  std::array<Eigen::Vector3d, 2> last_tip_{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  std::array<double, 2> last_slip_s_{-1e9, -1e9};
+  bool cautery_active_ = false;
+  bool started_ = false;
+  SessionMetrics metrics_;
+  double force_sum_N_ = 0;
+  long force_samples_ = 0;
+};
+
+}  // namespace vesica::app

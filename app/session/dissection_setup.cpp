@@ -1,0 +1,89 @@
+#include "app/session/dissection_setup.h"
+
+#include <cstdlib>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace vesica::app {
+
+namespace {
+const InstrumentConfig* FindKind(const Scenario& s, InstrumentKind kind) {
+  for (const InstrumentConfig& c : s.instruments)
+    if (c.kind == kind) return &c;
+  return nullptr;
+}
+
+physics::InstrumentMount MountOf(const Scenario& s, const InstrumentConfig& c, physics::InstrumentRole role) {
+  const Eigen::Vector3d centre = s.trocar(c.trocar).position_m;
+  const Eigen::Vector3d reference = s.laparoscope.look_at_m - centre;
+  if (!(reference.norm() > 0))
+    throw std::invalid_argument(s.source.string() + ": instrument '" + c.name +
+                                "': its trocar sits on the laparoscope's target, so no shaft direction");
+  return {role, centre, reference.normalized()};
+}
+}  // namespace
+
+physics::DissectionModelInputs MakeDissectionInputs(const Scenario& scenario, const SceneMeshes& meshes) {
+  const InstrumentConfig* grasper = FindKind(scenario, InstrumentKind::kGrasper);
+  const InstrumentConfig* hook = FindKind(scenario, InstrumentKind::kCauteryHook);
+  if (grasper == nullptr || hook == nullptr)
+    throw std::invalid_argument(scenario.source.string() +
+                                ": the dissection needs one grasper and one cautery_hook instrument");
+  physics::DissectionModelInputs in;
+  in.liver_surface = meshes.liver;
+  in.liver_source = scenario.liver.surface_mesh.string();
+  in.liver_material = {scenario.liver.material.youngs_modulus_Pa, scenario.liver.material.poisson_ratio,
+                       scenario.liver.material.density_kg_per_m3};
+  in.gallbladder_mesh = meshes.gallbladder;
+  in.gallbladder_source = scenario.gallbladder.volume_mesh.string();
+  physics::FemSettings& gb = in.gallbladder;
+  gb.body_name = "gallbladder (" + scenario.gallbladder.volume_mesh.filename().string() + ")";
+  gb.material = {scenario.gallbladder.material.youngs_modulus_Pa, scenario.gallbladder.material.poisson_ratio,
+                 scenario.gallbladder.material.density_kg_per_m3};
+  gb.element_model = scenario.gallbladder.element == FemElement::kLinear ? physics::ElementModel::kLinear
+                                                                         : physics::ElementModel::kCorotational;
+  gb.solver = scenario.gallbladder.solver == FemSolver::kPcg ? physics::LinearSolverKind::kPcg
+                                                             : physics::LinearSolverKind::kCholmod;
+  gb.rayleigh_mass_per_s = scenario.gallbladder.rayleigh_mass;
+  gb.rayleigh_stiffness_s = scenario.gallbladder.rayleigh_stiffness;
+  in.settings.springs = {scenario.connective_tissue.stiffness_N_per_m, scenario.connective_tissue.damping_Ns_per_m};
+  in.settings.attach_offset_m = scenario.connective_tissue.attach_offset_m;
+  in.instruments[0] = MountOf(scenario, *grasper, physics::InstrumentRole::kGrasper);
+  in.instruments[1] = MountOf(scenario, *hook, physics::InstrumentRole::kCauteryHook);
+  return in;
+}
+
+std::filesystem::path BemCachePath(const Scenario& scenario) {
+  std::filesystem::path dir;
+  if (const char* v = std::getenv("VESICA_CACHE_DIR"); v != nullptr && *v != '\0') {
+    dir = v;
+  } else if (const char* x = std::getenv("XDG_CACHE_HOME"); x != nullptr && *x != '\0') {
+    dir = std::filesystem::path(x) / "vesica";
+  } else if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') {
+    dir = std::filesystem::path(home) / ".cache" / "vesica";
+  } else {
+    dir = std::filesystem::temp_directory_path() / "vesica-cache";
+  }
+  const std::size_t h = std::hash<std::string>{}(std::filesystem::absolute(scenario.liver.surface_mesh).string());
+  return dir /
+         ("liver-" + scenario.liver.surface_mesh.stem().string() + "-" + std::to_string(h % 1000000007u) + ".greens");
+}
+
+std::shared_ptr<const physics::DissectionModel> BuildDissectionModelFor(const Scenario& scenario,
+                                                                        const SceneMeshes& meshes) {
+  physics::DissectionModelInputs in = MakeDissectionInputs(scenario, meshes);
+  const std::filesystem::path cache = BemCachePath(scenario);
+  std::error_code ec;
+  std::filesystem::create_directories(cache.parent_path(), ec);  // no cache folder: computed, not cached
+  if (!ec) in.liver_bem.cache_path = cache.string();
+  return physics::BuildDissectionModel(in);
+}
+
+fx::CauteryParams DefaultCauteryParams() {
+  fx::CauteryParams p;
+  p.membrane.fade_rate_per_s = 2.0;
+  return p;
+}
+
+}  // namespace vesica::app

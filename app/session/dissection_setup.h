@@ -1,0 +1,31 @@
+#pragma once
+// From a scenario and its meshes to the physics scene's inputs: materials, solver, springs and
+// the instrument mounts (each instrument pivots about its trocar; yaw = pitch = 0 points the
+// shaft at the laparoscope's target, as LaparoscopeView draws it).
+
+#include <filesystem>
+#include <memory>
+
+#include "app/render/scene_meshes.h"
+#include "app/scenario/scenario.h"
+#include "fx/cautery_effects.h"
+#include "physics/scene/dissection_model.h"
+
+namespace vesica::app {
+
+/// Throws std::invalid_argument naming the scenario file when it has no grasper + hook pair.
+physics::DissectionModelInputs MakeDissectionInputs(const Scenario& scenario, const SceneMeshes& meshes);
+
+/// The liver's Green's functions take seconds to compute: they are cached per user
+/// ($XDG_CACHE_HOME/vesica, else ~/.cache/vesica; $VESICA_CACHE_DIR overrides) under a name
+/// derived from the scenario file; the cache checks its own key, so a stale file is rebuilt.
+std::filesystem::path BemCachePath(const Scenario& scenario);
+
+/// MakeDissectionInputs + BuildDissectionModel with the BEM cache.
+std::shared_ptr<const physics::DissectionModel> BuildDissectionModelFor(const Scenario& scenario,
+                                                                        const SceneMeshes& meshes);
+
+/// Cautery settings of a session (fx defaults; the membrane fades in 0.5 s of active contact).
+fx::CauteryParams DefaultCauteryParams();
+
+}  // namespace vesica::app
