@@ -1,23 +1,110 @@
 #include "physics/fem/cholmod_solver.h"
 
 #include <algorithm>
+#include <vector>
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCore>
 
 namespace vesica::physics {
 
+namespace {
+
+using Decomposition = Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>;
+
+// Eigen keeps CHOLMOD's factor protected; the float copy needs its supernodes.
+struct FactorAccess : Decomposition {
+  static const cholmod_factor* Of(const Decomposition& d) { return static_cast<const FactorAccess&>(d).m_cholmodFactor; }
+};
+
+// CHOLMOD stops an L L^T factorisation at the first non-positive pivot (minor < n), but its
+// simplicial L D L^T accepts negative entries of D: check those (first entry of each column).
+bool PositiveDefinite(const cholmod_factor& l) {
+  if (l.minor < l.n) return false;
+  if (l.is_super || l.is_ll) return true;
+  const int* p = static_cast<const int*>(l.p);
+  const double* x = static_cast<const double*>(l.x);
+  for (size_t j = 0; j < l.n; ++j)
+    if (!(x[p[j]] > 0.0)) return false;
+  return true;
+}
+
+// Supernodal L L^T = P A P^T with L rounded to float. Supernode s holds columns
+// [super[s], super[s+1]) as a dense column-major block of pi[s+1] - pi[s] rows (row indices
+// rows[pi[s]...], the first ones its own columns) starting at values[px[s]].
+struct SingleFactor {
+  std::vector<int> super, pi, px, rows, perm;
+  std::vector<float> values;
+  mutable Eigen::VectorXf y, gathered;
+
+  bool CopyFrom(const cholmod_factor& l) {
+    if (!l.is_super || !l.is_ll || l.xtype != CHOLMOD_REAL || l.itype != CHOLMOD_INT) return false;
+    const int n = static_cast<int>(l.n), ns = static_cast<int>(l.nsuper);
+    const int* super_in = static_cast<const int*>(l.super);
+    const int* pi_in = static_cast<const int*>(l.pi);
+    const int* px_in = static_cast<const int*>(l.px);
+    super.assign(super_in, super_in + ns + 1);
+    pi.assign(pi_in, pi_in + ns + 1);
+    px.assign(px_in, px_in + ns + 1);
+    rows.assign(static_cast<const int*>(l.s), static_cast<const int*>(l.s) + pi[ns]);
+    perm.assign(static_cast<const int*>(l.Perm), static_cast<const int*>(l.Perm) + n);
+    const double* x = static_cast<const double*>(l.x);
+    values.resize(static_cast<size_t>(px[ns]));
+    for (size_t k = 0; k < values.size(); ++k) values[k] = static_cast<float>(x[k]);
+    y.resize(n);
+    int widest = 0;
+    for (int s = 0; s < ns; ++s) widest = std::max(widest, (pi[s + 1] - pi[s]) - (super[s + 1] - super[s]));
+    gathered.resize(widest);
+    return true;
+  }
+
+  void Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+    using Block = Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>;
+    const int n = static_cast<int>(perm.size()), ns = static_cast<int>(super.size()) - 1;
+    for (int k = 0; k < n; ++k) y[k] = static_cast<float>(b[perm[k]]);
+    for (int s = 0; s < ns; ++s) {  // L z = P b
+      const int k0 = super[s], nc = super[s + 1] - k0, nr = pi[s + 1] - pi[s];
+      const Block l(values.data() + px[s], nr, nc, Eigen::OuterStride<>(nr));
+      auto ys = y.segment(k0, nc);
+      l.topRows(nc).triangularView<Eigen::Lower>().solveInPlace(ys);
+      if (nr == nc) continue;
+      auto g = gathered.head(nr - nc);
+      g.noalias() = l.bottomRows(nr - nc) * ys;
+      const int* below = rows.data() + pi[s] + nc;
+      for (int i = 0; i < nr - nc; ++i) y[below[i]] -= g[i];
+    }
+    for (int s = ns - 1; s >= 0; --s) {  // L^T w = z
+      const int k0 = super[s], nc = super[s + 1] - k0, nr = pi[s + 1] - pi[s];
+      const Block l(values.data() + px[s], nr, nc, Eigen::OuterStride<>(nr));
+      auto ys = y.segment(k0, nc);
+      if (nr > nc) {
+        auto g = gathered.head(nr - nc);
+        const int* below = rows.data() + pi[s] + nc;
+        for (int i = 0; i < nr - nc; ++i) g[i] = y[below[i]];
+        ys.noalias() -= l.bottomRows(nr - nc).transpose() * g;
+      }
+      l.topRows(nc).triangularView<Eigen::Lower>().transpose().solveInPlace(ys);
+    }
+    x.resize(n);
+    for (int k = 0; k < n; ++k) x[perm[k]] = static_cast<double>(y[k]);
+  }
+};
+
+}  // namespace
+
 struct CholmodSolver::Impl {
   Eigen::SparseMatrix<double> matrix;  // same structure as the pattern; values copied in
-  Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower> cholesky;
+  Decomposition cholesky;
+  SingleFactor single;
   bool analysed = false;
   bool factorized = false;
+  bool has_single = false;
 };
 
 CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
 CholmodSolver::~CholmodSolver() = default;
 
-bool CholmodSolver::Factorize(const SparsePattern& pattern, const Eigen::VectorXd& values) {
+bool CholmodSolver::Factorize(const SparsePattern& pattern, const Eigen::VectorXd& values, bool keep_single_precision) {
   Impl& s = *impl_;
   if (!s.analysed || s.matrix.rows() != pattern.structure.rows() ||
       s.matrix.nonZeros() != pattern.structure.nonZeros()) {
@@ -27,12 +114,22 @@ bool CholmodSolver::Factorize(const SparsePattern& pattern, const Eigen::VectorX
   }
   std::copy(values.data(), values.data() + values.size(), s.matrix.valuePtr());
   s.cholesky.factorize(s.matrix);
-  s.factorized = s.cholesky.info() == Eigen::Success;
+  // Eigen 3.4 reports Success whatever CHOLMOD found.
+  const cholmod_factor* l = FactorAccess::Of(s.cholesky);
+  s.factorized = s.cholesky.info() == Eigen::Success && l && l->itype == CHOLMOD_INT && PositiveDefinite(*l);
+  s.has_single = s.factorized && keep_single_precision && s.single.CopyFrom(*l);
   return s.factorized;
 }
 
 bool CholmodSolver::factorized() const { return impl_->factorized; }
 
 void CholmodSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const { x = impl_->cholesky.solve(b); }
+
+void CholmodSolver::SolveSinglePrecision(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  if (impl_->has_single)
+    impl_->single.Solve(b, x);
+  else
+    Solve(b, x);
+}
 
 }  // namespace vesica::physics

@@ -207,7 +207,7 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
     if (!w.rest_factor.factorized() || w.force_refactor) {
       Eigen::VectorXd rest_system;
       SystemValuesFromTangent(m.linear_stiffness_values, rest_system);
-      if (!w.rest_factor.Factorize(m.pattern, rest_system)) return false;
+      if (!w.rest_factor.Factorize(m.pattern, rest_system, s.rotated_factor_single_precision)) return false;
       w.force_refactor = false;
     }
     UpdateNodeRotations();
@@ -220,7 +220,10 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
           w.rotated_residual.resize(res.size());
           for (int n = 0; n < nodes; ++n)
             w.rotated_residual.segment<3>(3 * n) = w.node_rotations[n].transpose() * res.segment<3>(3 * n);
-          w.rest_factor.Solve(w.rotated_residual, w.rotated_solution);
+          if (s.rotated_factor_single_precision)
+            w.rest_factor.SolveSinglePrecision(w.rotated_residual, w.rotated_solution);
+          else
+            w.rest_factor.Solve(w.rotated_residual, w.rotated_solution);
           z.resize(res.size());
           for (int n = 0; n < nodes; ++n)
             z.segment<3>(3 * n) = w.node_rotations[n] * w.rotated_solution.segment<3>(3 * n);

@@ -49,6 +49,10 @@ struct FemSettings {
   /// Corotational + CHOLMOD: refactorise the system every this many steps (1 = every step, exact);
   /// in between, the last factor preconditions PCG. Linear bodies factorise once.
   int cholmod_refresh_steps = 1;
+  /// kRotatedFactorPcg: apply the rest factor rounded to float (half the memory traffic of the
+  /// memory-bound solve; PCG still converges to pcg_relative_tolerance, in about as many
+  /// iterations). false: the double factor (a linear body then converges in exactly one iteration).
+  bool rotated_factor_single_precision = true;
 
   /// Divergence guard: a step is rejected when its energy exceeds this factor times (energy
   /// before + |work of external forces|) plus energy_floor_J.
