@@ -9,16 +9,31 @@ namespace vesica::physics {
 
 void SymmetricPatternMultiply(const SparsePattern& p, const Eigen::VectorXd& values, const Eigen::VectorXd& x,
                               Eigen::VectorXd& y) {
-  // Column j of a symmetric matrix is its row j: a gather loop per output entry.
-  const int n = static_cast<int>(p.structure.cols());
+  // Column j of a symmetric matrix is its row j: a gather per output entry. The pattern is made of
+  // 3x3 node blocks (BuildSparsePattern): the three columns of node b list the same rows, three
+  // consecutive ones per neighbour, so one row index serves nine values (the memory-bound loop reads
+  // a third fewer bytes than a scalar CSC product).
+  const int nodes = static_cast<int>(p.structure.cols()) / 3;
   const int* outer = p.structure.outerIndexPtr();
   const int* inner = p.structure.innerIndexPtr();
   const double* v = values.data();
-  y.resize(n);
-  for (int j = 0; j < n; ++j) {
-    double sum = 0.0;
-    for (int k = outer[j]; k < outer[j + 1]; ++k) sum += v[k] * x[inner[k]];
-    y[j] = sum;
+  const double* xs = x.data();
+  y.resize(3 * nodes);
+  for (int b = 0; b < nodes; ++b) {
+    const int begin = outer[3 * b], stride = p.column_stride[b];
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+    for (int k = begin; k < begin + stride; k += 3) {
+      const double* xa = xs + inner[k];  // rows 3a, 3a+1, 3a+2
+      const double* c0 = v + k;
+      s0 += c0[0] * xa[0] + c0[1] * xa[1] + c0[2] * xa[2];
+      const double* c1 = c0 + stride;
+      s1 += c1[0] * xa[0] + c1[1] * xa[1] + c1[2] * xa[2];
+      const double* c2 = c1 + stride;
+      s2 += c2[0] * xa[0] + c2[1] * xa[1] + c2[2] * xa[2];
+    }
+    y[3 * b] = s0;
+    y[3 * b + 1] = s1;
+    y[3 * b + 2] = s2;
   }
 }
 
