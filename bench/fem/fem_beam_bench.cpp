@@ -78,7 +78,7 @@ const bool kRegistered = [] {
       {"pcg", LinearSolverKind::kPcg, 1, 1e-8, 20},                          // paper's PCG settings
       {"cholmod", LinearSolverKind::kCholmod, 1, 1e-8, 20},                  // exact: refactorised each step
       {"cholmod_refresh10", LinearSolverKind::kCholmod, 10, 1e-8, 20},       // stale factor + PCG to 1e-8
-      {"rotated_factor", LinearSolverKind::kRotatedFactorPcg, 1, 1e-8, 20},  // rest factor turned per node
+      {"rotated_factor", LinearSolverKind::kRotatedFactorPcg, 1, 1e-8, 100},  // rest factor turned per node
   };
   const std::pair<ElementModel, const char*> elements[] = {{ElementModel::kLinear, "linear"},
                                                            {ElementModel::kCorotational, "corotational"}};

