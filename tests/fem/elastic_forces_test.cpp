@@ -78,6 +78,20 @@ TEST(ElasticForcesTest, InternalForceIsTheEnergyGradient) {
   }
 }
 
+// The blocked product (one row index per 3x3 node block) is the sparse matrix times the vector.
+TEST(ElasticForcesTest, PatternMultiplyEqualsTheSparseProduct) {
+  const FemModel m = Block(ElementModel::kCorotational);
+  Eigen::VectorXd values = m.linear_stiffness_values;
+  for (Eigen::Index k = 0; k < values.size(); ++k) values[k] += 1e-3 * std::sin(0.1 * static_cast<double>(k));
+  Eigen::VectorXd x(m.num_dofs());
+  for (int i = 0; i < m.num_dofs(); ++i) x[i] = std::cos(0.7 * i);
+  Eigen::VectorXd y;
+  SymmetricPatternMultiply(m.pattern, values, x, y);
+  // The gather form multiplies by the transpose: compare with A^T x.
+  const Eigen::VectorXd expected = PatternMatrix(m.pattern, values).transpose() * x;
+  EXPECT_LT((y - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff());
+}
+
 TEST(ElementRotationTest, RecoversRotationFromRotatedStretch) {
   const Eigen::Matrix3d r = Eigen::AngleAxisd(2.0, Eigen::Vector3d(0.3, -1, 2).normalized()).toRotationMatrix();
   const Eigen::Matrix3d stretch = Eigen::Vector3d(1.3, 0.8, 1.05).asDiagonal();
