@@ -98,6 +98,7 @@ void FemBody::SetAttachmentStiffness(const Eigen::VectorXd& stiffness, const Eig
 void FemBody::DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   const FemSettings& s = model_->settings;
   y.setZero(x.size());
+  if (x.isZero(0.0)) return;  // backward Euler's damping drive: skip the product
   if (s.rayleigh_mass_per_s != 0.0) y += s.rayleigh_mass_per_s * model_->MassTimes(x);
   if (s.rayleigh_stiffness_s != 0.0) {
     Eigen::VectorXd kx;
