@@ -22,6 +22,7 @@ struct BeamVariant {
   int refresh_steps;
   double tolerance;
   int max_iterations;
+  bool gauss_seidel = false;
 };
 
 std::shared_ptr<FemModel> BeamModel(const Eigen::Vector3i& nodes, ElementModel element, const BeamVariant& v) {
@@ -36,6 +37,7 @@ std::shared_ptr<FemModel> BeamModel(const Eigen::Vector3i& nodes, ElementModel e
   s.cholmod_refresh_steps = v.refresh_steps;
   s.pcg_relative_tolerance = v.tolerance;
   s.pcg_max_iterations = v.max_iterations;
+  s.rotated_factor_gauss_seidel = v.gauss_seidel;
   s.time_step_s = 0.01;
   s.rayleigh_mass_per_s = 0.1;
   s.rayleigh_stiffness_s = 0.1;
@@ -79,6 +81,7 @@ const bool kRegistered = [] {
       {"cholmod", LinearSolverKind::kCholmod, 1, 1e-8, 20},                  // exact: refactorised each step
       {"cholmod_refresh10", LinearSolverKind::kCholmod, 10, 1e-8, 20},       // stale factor + PCG to 1e-8
       {"rotated_factor", LinearSolverKind::kRotatedFactorPcg, 1, 1e-8, 100},  // rest factor turned per node
+      {"rotated_factor_gs", LinearSolverKind::kRotatedFactorPcg, 1, 1e-8, 100, true},  // + Gauss-Seidel sweeps
   };
   const std::pair<ElementModel, const char*> elements[] = {{ElementModel::kLinear, "linear"},
                                                            {ElementModel::kCorotational, "corotational"}};

@@ -32,7 +32,8 @@ Eigen::Vector3i CellsForNodes(int nodes) {
 }
 
 std::shared_ptr<FemModel> GallbladderModel(int nodes, ElementModel element, LinearSolverKind solver,
-                                           int refresh_steps = 1, int max_iterations = 20) {
+                                           int refresh_steps = 1, int max_iterations = 20,
+                                           bool gauss_seidel = false) {
   const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, CellsForNodes(nodes));
   FemSettings s;
   s.body_name = "gallbladder box";
@@ -42,6 +43,7 @@ std::shared_ptr<FemModel> GallbladderModel(int nodes, ElementModel element, Line
   s.solver = solver;
   s.cholmod_refresh_steps = refresh_steps;
   s.pcg_max_iterations = max_iterations;
+  s.rotated_factor_gauss_seidel = gauss_seidel;
   s.time_step_s = 0.01;
   s.rayleigh_mass_per_s = 1.0;
   s.rayleigh_stiffness_s = 0.01;
@@ -52,8 +54,8 @@ std::shared_ptr<FemModel> GallbladderModel(int nodes, ElementModel element, Line
 }
 
 void BM_FemStep(benchmark::State& state, ElementModel element, LinearSolverKind solver, int nodes,
-                int refresh_steps, int max_iterations) {
-  const auto model = GallbladderModel(nodes, element, solver, refresh_steps, max_iterations);
+                int refresh_steps, int max_iterations, bool gauss_seidel) {
+  const auto model = GallbladderModel(nodes, element, solver, refresh_steps, max_iterations, gauss_seidel);
   FemBody body(model);
   const int grasped = model->num_nodes() - 1;
   Eigen::VectorXd pull = Eigen::VectorXd::Zero(model->num_dofs());
@@ -93,7 +95,7 @@ const bool kRegistered = [] {
       for (int nodes : kTable3Nodes) {
         const std::string name =
             std::string("BM_FemStep/") + element_name + "/" + solver_name + "/" + std::to_string(nodes);
-        benchmark::RegisterBenchmark(name.c_str(), BM_FemStep, element, solver, nodes, 1, 20)
+        benchmark::RegisterBenchmark(name.c_str(), BM_FemStep, element, solver, nodes, 1, 20, false)
             ->Unit(benchmark::kMillisecond)
             ->MinTime(0.2);
       }
@@ -101,18 +103,20 @@ const bool kRegistered = [] {
   // PCG (tolerance 1e-8, at most 20 iterations) preconditioned by it in between.
   for (int nodes : {310, 2865})
     benchmark::RegisterBenchmark(("BM_FemStep/corotational/cholmod_refresh10/" + std::to_string(nodes)).c_str(),
-                                 BM_FemStep, ElementModel::kCorotational, LinearSolverKind::kCholmod, nodes, 10, 20)
+                                 BM_FemStep, ElementModel::kCorotational, LinearSolverKind::kCholmod, nodes, 10, 20, false)
         ->Unit(benchmark::kMillisecond)
         ->MinTime(0.5);
   // Converged corotational steps: PCG (tolerance 1e-8, cap 100 so that every step converges)
   // preconditioned by the rest factor turned per node into the current frame
-  // (LinearSolverKind::kRotatedFactorPcg).
+  // (LinearSolverKind::kRotatedFactorPcg), alone or between block Gauss-Seidel sweeps (_gs).
   for (int nodes : {310, 2865})
-    benchmark::RegisterBenchmark(("BM_FemStep/corotational/rotated_factor/" + std::to_string(nodes)).c_str(),
-                                 BM_FemStep, ElementModel::kCorotational, LinearSolverKind::kRotatedFactorPcg, nodes, 1,
-                                 100)
-        ->Unit(benchmark::kMillisecond)
-        ->MinTime(0.5);
+    for (bool gauss_seidel : {false, true})
+      benchmark::RegisterBenchmark(
+          ("BM_FemStep/corotational/rotated_factor" + std::string(gauss_seidel ? "_gs/" : "/") + std::to_string(nodes))
+              .c_str(),
+          BM_FemStep, ElementModel::kCorotational, LinearSolverKind::kRotatedFactorPcg, nodes, 1, 100, gauss_seidel)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(40);  // the same 40 steps from rest for both: later steps need more iterations
   for (int nodes : kTable3Nodes)
     benchmark::RegisterBenchmark(("BM_FemPreprocess/" + std::to_string(nodes)).c_str(), BM_FemPreprocess, nodes)
         ->Unit(benchmark::kMillisecond)

@@ -35,7 +35,7 @@ struct FemBody::Workspace {
   std::vector<Eigen::Vector4d> node_quaternions;
   std::vector<Eigen::Matrix3d> node_rotations;
   std::vector<char> node_has_fixed_axis;
-  Eigen::VectorXd rotated_residual, rotated_solution;
+  Eigen::VectorXd rotated_residual, rotated_solution, smoothed_residual, correction;
 };
 
 FemBody::FemBody(std::shared_ptr<const FemModel> model)
@@ -212,22 +212,36 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
       w.force_refactor = false;
     }
     UpdateNodeRotations();
+    if (s.rotated_factor_gauss_seidel) w.jacobi.Compute(m.pattern, w.system_values);
     const int nodes = m.num_nodes();
+    // z = R S0^-1 R^T res, R block diagonal (one rotation per node).
+    auto apply_rotated_factor = [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
+      w.rotated_residual.resize(res.size());
+      for (int n = 0; n < nodes; ++n)
+        w.rotated_residual.segment<3>(3 * n) = w.node_rotations[n].transpose() * res.segment<3>(3 * n);
+      if (s.rotated_factor_single_precision)
+        w.rest_factor.SolveSinglePrecision(w.rotated_residual, w.rotated_solution);
+      else
+        w.rest_factor.Solve(w.rotated_residual, w.rotated_solution);
+      z.resize(res.size());
+      for (int n = 0; n < nodes; ++n) z.segment<3>(3 * n) = w.node_rotations[n] * w.rotated_solution.segment<3>(3 * n);
+    };
     du = w.last_increment;
     r = SolvePcg(
         m.pattern, w.system_values, rhs, du,
         [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
-          // z = R S0^-1 R^T res, R block diagonal (one rotation per node).
-          w.rotated_residual.resize(res.size());
-          for (int n = 0; n < nodes; ++n)
-            w.rotated_residual.segment<3>(3 * n) = w.node_rotations[n].transpose() * res.segment<3>(3 * n);
-          if (s.rotated_factor_single_precision)
-            w.rest_factor.SolveSinglePrecision(w.rotated_residual, w.rotated_solution);
-          else
-            w.rest_factor.Solve(w.rotated_residual, w.rotated_solution);
-          z.resize(res.size());
-          for (int n = 0; n < nodes; ++n)
-            z.segment<3>(3 * n) = w.node_rotations[n] * w.rotated_solution.segment<3>(3 * n);
+          if (s.rotated_factor_gauss_seidel) {
+            // Forward block Gauss-Seidel sweep, rotated-factor correction, backward sweep.
+            z.setZero(res.size());
+            BlockGaussSeidelSweep(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z, true);
+            UpperBlocksTimes(m.pattern, w.system_values, z, w.smoothed_residual);  // res - S z = -U z
+            w.smoothed_residual = -w.smoothed_residual;
+            apply_rotated_factor(w.smoothed_residual, w.correction);
+            z += w.correction;
+            BlockGaussSeidelSweep(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z, false);
+          } else {
+            apply_rotated_factor(res, z);
+          }
         },
         tolerance, max_iterations);
   } else {

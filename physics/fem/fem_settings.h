@@ -53,6 +53,10 @@ struct FemSettings {
   /// memory-bound solve; PCG still converges to pcg_relative_tolerance, in about as many
   /// iterations). false: the double factor (a linear body then converges in exactly one iteration).
   bool rotated_factor_single_precision = true;
+  /// kRotatedFactorPcg: wrap the rotated factor in a forward and a backward block Gauss-Seidel
+  /// sweep on the true system (symmetric multiplicative, still SPD): the sweeps remove the local
+  /// error where element rotations differ from their nodes' (a grasped, sheared corner).
+  bool rotated_factor_gauss_seidel = false;
 
   /// Divergence guard: a step is rejected when its energy exceeds this factor times (energy
   /// before + |work of external forces|) plus energy_floor_J.

@@ -25,6 +25,59 @@ void BlockJacobiPreconditioner::Apply(const Eigen::VectorXd& r, Eigen::VectorXd&
   for (size_t i = 0; i < inverse_blocks_.size(); ++i) z.segment<3>(3 * i) = inverse_blocks_[i] * r.segment<3>(3 * i);
 }
 
+namespace {
+// Adds the products of row i's off-diagonal blocks in slots [begin, end) of its columns with x to
+// (s0, s1, s2) (row i of the symmetric matrix is column i: gather form).
+inline void GatherBlocks(const double* v, const int* inner, const double* x, int begin, int end, int stride,
+                         double& s0, double& s1, double& s2) {
+  for (int k = begin; k < end; k += 3) {
+    const double* xa = x + inner[k];
+    const double* c0 = v + k;
+    const double* c1 = c0 + stride;
+    const double* c2 = c1 + stride;
+    s0 += c0[0] * xa[0] + c0[1] * xa[1] + c0[2] * xa[2];
+    s1 += c1[0] * xa[0] + c1[1] * xa[1] + c1[2] * xa[2];
+    s2 += c2[0] * xa[0] + c2[1] * xa[1] + c2[2] * xa[2];
+  }
+}
+}  // namespace
+
+void BlockGaussSeidelSweep(const SparsePattern& p, const Eigen::VectorXd& values,
+                           const std::vector<Eigen::Matrix3d>& inverse_diagonal, const Eigen::VectorXd& b,
+                           Eigen::VectorXd& x, bool forward) {
+  const int nodes = static_cast<int>(inverse_diagonal.size());
+  const int* outer = p.structure.outerIndexPtr();
+  const int* inner = p.structure.innerIndexPtr();
+  const double* v = values.data();
+  double* xs = x.data();
+  for (int step = 0; step < nodes; ++step) {
+    const int i = forward ? step : nodes - 1 - step;
+    const int begin = outer[3 * i], stride = p.column_stride[i];
+    const int diagonal = p.diagonal_slot[3 * i];  // rows are sorted: blocks before it are j < i
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+    GatherBlocks(v, inner, xs, begin, diagonal, stride, s0, s1, s2);
+    GatherBlocks(v, inner, xs, diagonal + 3, begin + stride, stride, s0, s1, s2);
+    const Eigen::Vector3d t(b[3 * i] - s0, b[3 * i + 1] - s1, b[3 * i + 2] - s2);
+    x.segment<3>(3 * i) = inverse_diagonal[i] * t;
+  }
+}
+
+void UpperBlocksTimes(const SparsePattern& p, const Eigen::VectorXd& values, const Eigen::VectorXd& x,
+                      Eigen::VectorXd& y) {
+  const int nodes = static_cast<int>(p.structure.cols()) / 3;
+  const int* outer = p.structure.outerIndexPtr();
+  const int* inner = p.structure.innerIndexPtr();
+  y.resize(3 * nodes);
+  for (int i = 0; i < nodes; ++i) {
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+    GatherBlocks(values.data(), inner, x.data(), p.diagonal_slot[3 * i] + 3, outer[3 * i] + p.column_stride[i],
+                 p.column_stride[i], s0, s1, s2);
+    y[3 * i] = s0;
+    y[3 * i + 1] = s1;
+    y[3 * i + 2] = s2;
+  }
+}
+
 PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values, const Eigen::VectorXd& b,
                    Eigen::VectorXd& x, const Preconditioner& preconditioner, double relative_tolerance,
                    int max_iterations) {

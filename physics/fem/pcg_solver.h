@@ -25,10 +25,24 @@ class BlockJacobiPreconditioner {
  public:
   void Compute(const SparsePattern& pattern, const Eigen::VectorXd& values);
   void Apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+  const std::vector<Eigen::Matrix3d>& inverse_blocks() const { return inverse_blocks_; }
 
  private:
   std::vector<Eigen::Matrix3d> inverse_blocks_;
 };
+
+/// One block Gauss-Seidel sweep on A x = b (3x3 node blocks, inverse diagonal blocks given),
+/// updating x in place: x + (D + L)^-1 (b - A x) in node order (forward) or x + (D + U)^-1 (b - A x)
+/// in reverse order. A forward sweep, a correction and a backward sweep make a symmetric
+/// multiplicative preconditioner, positive definite for any SPD correction.
+void BlockGaussSeidelSweep(const SparsePattern& pattern, const Eigen::VectorXd& values,
+                           const std::vector<Eigen::Matrix3d>& inverse_diagonal, const Eigen::VectorXd& b,
+                           Eigen::VectorXd& x, bool forward);
+
+/// y = U x with U the blocks of A right of the diagonal (row node i, column node j > i). After a
+/// forward sweep from x = 0, b - A x = -U x: half the reads of a full product.
+void UpperBlocksTimes(const SparsePattern& pattern, const Eigen::VectorXd& values, const Eigen::VectorXd& x,
+                      Eigen::VectorXd& y);
 
 /// Solves A x = b; x holds the warm start on entry and the solution on exit.
 PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values,
