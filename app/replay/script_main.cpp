@@ -19,17 +19,22 @@ int main(int argc, char** argv) {
   CLI::App cli{"Vesica: record the scripted dissection"};
   std::string scenario_path = vesica::app::DefaultScenarioPath().string(), out;
   int every = 4;
+  double max_s = 240;
   cli.add_option("-s,--scenario", scenario_path, "scenario file (TOML)")->capture_default_str();
   cli.add_option("-o,--output", out, "recording to write")->required();
   cli.add_option("--every", every, "keep every N-th physics step's input (replay interpolates)")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
+  cli.add_option("--max-s", max_s, "give up after this much session time")->capture_default_str();
   CLI11_PARSE(cli, argc, argv);
   try {
     const vesica::app::Scenario scenario = vesica::app::LoadScenario(scenario_path);
     const auto model = vesica::app::BuildDissectionModelFor(scenario, vesica::app::LoadSceneMeshes(scenario));
     vesica::app::DissectionSession session(model, vesica::app::DefaultCauteryParams());
-    const auto frames = vesica::app::RunScriptedDissection(session);
+    vesica::app::ScriptedSurgeonSettings settings;
+    settings.log_progress = true;
+    settings.max_session_s = max_s;
+    const auto frames = vesica::app::RunScriptedDissection(session, settings);
     vesica::device::InputRecorder recorder(scenario.name);
     for (size_t i = 0; i < frames.size(); ++i)
       if (i % static_cast<size_t>(every) == 0 || i + 1 == frames.size()) recorder.Append(frames[i]);

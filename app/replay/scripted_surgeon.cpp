@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -83,6 +84,7 @@ std::vector<device::InputFrame> RunScriptedDissection(DissectionSession& session
   const Vec3 hook_home = hook.p_RemoteCentre_W + 0.05 * hook.reference_direction_W;
   Vec3 hook_tip = hook_home;
   Vec3 retract_origin = Vec3::Zero();
+  double arrived_at = -1;
   double jaw = 0.5, approach_offset = 0.001, phase_start = 0, spring_start = 0;
   int target_spring = -1;
   std::vector<device::InputFrame> frames;
@@ -94,10 +96,18 @@ std::vector<device::InputFrame> RunScriptedDissection(DissectionSession& session
     const physics::Vertices x = scene.gallbladder_surface_positions();
     switch (phase) {
       case Phase::kApproach: {
-        const physics::Vertices n = VertexNormals(surface, x);
-        const Vec3 target = x.row(fundus).transpose() + approach_offset * n.row(fundus).transpose();
-        grasp_tip = MoveToward(grasp_tip, target, max_step);
-        if (jaw == 0.0) {  // closed last step: did it take hold?
+        // Move to just outside the fundus, keep still for kDwell, close, keep still for kDwell,
+        // then check the hold: every event sits between stills, so a replay that interpolates
+        // the recording's frames reproduces it.
+        constexpr double kDwell = 0.1;
+        if (arrived_at < 0) {
+          const physics::Vertices n = VertexNormals(surface, x);
+          const Vec3 target = x.row(fundus).transpose() + approach_offset * n.row(fundus).transpose();
+          grasp_tip = MoveToward(grasp_tip, target, max_step);
+          if ((grasp_tip - target).norm() < 1e-9) arrived_at = t;
+        } else if (jaw > 0.0 && t - arrived_at >= kDwell) {
+          jaw = 0.0;
+        } else if (jaw == 0.0 && t - arrived_at >= 2 * kDwell) {
           if (scene.grasp().state() == physics::GraspStateMachine::State::kHolding) {
             phase = Phase::kRetract;
             retract_origin = grasp_tip;
@@ -106,8 +116,7 @@ std::vector<device::InputFrame> RunScriptedDissection(DissectionSession& session
             jaw = 0.5;
             approach_offset -= 0.0005;  // a little deeper next time
           }
-        } else if ((grasp_tip - target).norm() < 1e-4) {
-          jaw = 0.0;
+          arrived_at = -1;
         }
         break;
       }
@@ -117,6 +126,7 @@ std::vector<device::InputFrame> RunScriptedDissection(DissectionSession& session
           phase = Phase::kApproach;
           jaw = 0.5;
           approach_offset = 0.001;
+          arrived_at = -1;
           break;
         }
         const double cut = static_cast<double>(total - scene.tissue().num_alive()) / total;
@@ -169,8 +179,21 @@ std::vector<device::InputFrame> RunScriptedDissection(DissectionSession& session
     f.instruments[0].pose = PoseFor(grasper, grasp_tip, jaw);
     f.instruments[1].pose = PoseFor(hook, hook_tip, 0.0);
     f.instruments[1].pedal = pedal;
-    session.Step(f);
+    const SessionStepReport r = session.Step(f);
     frames.push_back(f);
+    if (st.log_progress && session.scene().steps() % static_cast<long>(1.0 / h + 0.5) == 0) {
+      std::fprintf(
+          stderr,
+          "t %6.2f s phase %d springs alive %3d grasp %d target %3d hook-target %.4f m f %.2f/%.2f N E %.3g J\n",
+          session.time_s(), static_cast<int>(phase), scene.tissue().num_alive(),
+          static_cast<int>(scene.grasp().state()), target_spring,
+          target_spring >= 0 ? (hook_tip - 0.5 * (scene.membrane_points().row(2 * target_spring) +
+                                                  scene.membrane_points().row(2 * target_spring + 1))
+                                                     .transpose())
+                                   .norm()
+                             : -1.0,
+          r.physics.tool_force_N[0].norm(), r.physics.tool_force_N[1].norm(), scene.Energy());
+    }
   }
   return frames;
 }

@@ -21,6 +21,7 @@ struct ScriptedSurgeonSettings {
   double spring_timeout_s = 2.0;    ///< give up on a spring after this long, come back later
   double max_session_s = 240.0;     ///< stop (unfinished) after this long
   double release_hold_s = 0.5;      ///< after the release, before the end
+  bool log_progress = false;        ///< one line per simulated second on stderr
 };
 
 /// Drives `session` until the gallbladder is free and released (or max_session_s), returning the

@@ -82,7 +82,7 @@ std::shared_ptr<const physics::DissectionModel> BuildDissectionModelFor(const Sc
 
 fx::CauteryParams DefaultCauteryParams() {
   fx::CauteryParams p;
-  p.membrane.fade_rate_per_s = 2.0;
+  p.membrane.fade_rate_per_s = 4.0;
   return p;
 }
 

@@ -25,7 +25,7 @@ std::filesystem::path BemCachePath(const Scenario& scenario);
 std::shared_ptr<const physics::DissectionModel> BuildDissectionModelFor(const Scenario& scenario,
                                                                         const SceneMeshes& meshes);
 
-/// Cautery settings of a session (fx defaults; the membrane fades in 0.5 s of active contact).
+/// Cautery settings of a session (fx defaults; the membrane fades in 0.25 s of active contact).
 fx::CauteryParams DefaultCauteryParams();
 
 }  // namespace vesica::app
