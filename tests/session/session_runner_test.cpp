@@ -1,0 +1,130 @@
+// The trainer's loops without a window: a replay through the threaded runner ends in the same
+// state as the single-threaded replay; pause holds session time; reset starts over; the haptic
+// loop runs beside physics.
+
+#include "app/session/session_runner.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "app/render/scene_meshes.h"
+#include "app/replay/session_replay.h"
+#include "app/scenario/scenario_loader.h"
+#include "app/session/dissection_setup.h"
+#include "app/session/live_input.h"
+#include "device/input/input_recording.h"
+#include "device/input/replay_input.h"
+
+namespace vesica::app {
+namespace {
+
+using namespace std::chrono_literals;
+
+class SessionRunnerTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const Scenario scenario = LoadScenario(DefaultScenarioPath());
+    model_ = BuildDissectionModelFor(scenario, LoadSceneMeshes(scenario));
+    device::InputRecording rec =
+        device::ReadInputRecording(std::filesystem::path(VESICA_SOURCE_DIR) / "data/recordings/dissection.csv");
+    rec.frames.resize(400);  // the first 2 s: approach and grasp
+    head_ = new device::InputRecording(rec);
+  }
+  static void TearDownTestSuite() {
+    model_.reset();
+    delete head_;
+  }
+  static RunnerStatus WaitFinished(SessionRunner& runner) {
+    for (int i = 0; i < 6000; ++i) {
+      const RunnerStatus s = runner.Status();
+      if (s.finished) return s;
+      std::this_thread::sleep_for(10ms);
+    }
+    ADD_FAILURE() << "runner did not finish in 60 s";
+    return runner.Status();
+  }
+  static std::shared_ptr<const physics::DissectionModel> model_;
+  static device::InputRecording* head_;
+};
+std::shared_ptr<const physics::DissectionModel> SessionRunnerTest::model_;
+device::InputRecording* SessionRunnerTest::head_ = nullptr;
+
+TEST_F(SessionRunnerTest, ThreadedReplayEndsInTheSameStateAsTheHeadlessOne) {
+  DissectionSession direct(model_, DefaultCauteryParams());
+  device::ReplayInput replay(*head_);
+  const ReplayOutcome outcome = RunReplay(direct, replay);
+
+  RunnerOptions options;
+  options.real_time = false;
+  options.end_after_s = static_cast<double>(outcome.steps) * model_->settings.time_step_s - 1e-9;
+  SessionRunner runner(model_, DefaultCauteryParams(), std::make_shared<device::ReplayInput>(*head_), options);
+  runner.Start();
+  const RunnerStatus s = WaitFinished(runner);
+  EXPECT_TRUE(s.error.empty()) << s.error;
+  EXPECT_EQ(s.session_time_s, direct.time_s());
+  const SessionMetrics a = s.metrics, b = direct.metrics();
+  EXPECT_EQ(a.path_length_left_m, b.path_length_left_m);
+  EXPECT_EQ(a.path_length_right_m, b.path_length_right_m);
+  EXPECT_EQ(a.max_force_N, b.max_force_N);
+  EXPECT_EQ(a.mean_force_N, b.mean_force_N);
+  EXPECT_GT(a.path_length_left_m, 0.0);
+  const RenderFrame& frame = runner.LatestFrame();
+  const RenderFrame expected = direct.MakeRenderFrame();
+  ASSERT_EQ(frame.gallbladder_vertices.rows(), expected.gallbladder_vertices.rows());
+  EXPECT_TRUE((frame.gallbladder_vertices.array() == expected.gallbladder_vertices.array()).all());
+  EXPECT_EQ(frame.instruments[0].grasping, expected.instruments[0].grasping);
+  // The recorded input replays to the same frames it was given.
+  const device::InputRecording rec = runner.Recording();
+  ASSERT_EQ(static_cast<long>(rec.frames.size()), outcome.steps);
+  EXPECT_EQ(rec.frames[1].time_s, model_->settings.time_step_s);
+  EXPECT_EQ(rec.frames[17].instruments[0].pose.insertion_m,
+            device::ReplayInput(*head_).Sample(17 * model_->settings.time_step_s).instruments[0].pose.insertion_m);
+  // The haptic loop ran beside physics.
+  EXPECT_GT(s.haptic.rate_hz, 0.0);
+}
+
+TEST_F(SessionRunnerTest, PauseHoldsTimeResetStartsOverEndFinishes) {
+  auto input = std::make_shared<LiveInput>();
+  device::InstrumentInput hook;
+  hook.pose.insertion_m = 0.05;
+  input->Set(1, hook);
+  input->Set(0, hook);
+  RunnerOptions options;  // real time
+  SessionRunner runner(model_, DefaultCauteryParams(), input, options);
+  runner.Start();
+  std::this_thread::sleep_for(300ms);
+  runner.SetPaused(true);
+  std::this_thread::sleep_for(50ms);  // let a step in flight finish
+  const double paused_at = runner.Status().session_time_s;
+  EXPECT_GT(paused_at, 0.0);
+  std::this_thread::sleep_for(200ms);
+  EXPECT_EQ(runner.Status().session_time_s, paused_at);
+  EXPECT_TRUE(runner.Status().paused);
+  runner.SetPaused(false);
+  runner.Reset();
+  std::this_thread::sleep_for(50ms);
+  EXPECT_LT(runner.Status().session_time_s, paused_at + 0.05);
+  runner.End();
+  const RunnerStatus s = WaitFinished(runner);
+  EXPECT_TRUE(s.finished);
+  EXPECT_TRUE(s.error.empty());
+  EXPECT_GT(s.physics.rate_hz, 0.0);
+}
+
+TEST_F(SessionRunnerTest, BadInputStopsPhysicsWithTheReason) {
+  auto input = std::make_shared<LiveInput>();
+  device::InstrumentInput bad;
+  bad.pose.insertion_m = -1.0;
+  input->Set(0, bad);
+  RunnerOptions options;
+  options.real_time = false;
+  SessionRunner runner(model_, DefaultCauteryParams(), input, options);
+  runner.Start();
+  const RunnerStatus s = WaitFinished(runner);
+  EXPECT_NE(s.error.find("instrument 0"), std::string::npos) << s.error;
+}
+
+}  // namespace
+}  // namespace vesica::app
