@@ -23,6 +23,7 @@ struct FemBody::Workspace {
   bool linear_system_built = false;  // a linear body's S is built once (and after attachment changes)
   AttachmentSprings attachment;
   Eigen::VectorXd last_increment;          // PCG warm start
+  Eigen::VectorXd increment_before_last;   // kRotatedFactorPcg: linear extrapolation of the warm start
   std::vector<Eigen::Vector4d> rotations;  // corotational warm start, per tet
   BlockJacobiPreconditioner jacobi;
   CholmodSolver cholmod;
@@ -226,7 +227,11 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
       z.resize(res.size());
       for (int n = 0; n < nodes; ++n) z.segment<3>(3 * n) = w.node_rotations[n] * w.rotated_solution.segment<3>(3 * n);
     };
-    du = w.last_increment;
+    // Warm start: du extrapolated from the last two steps' (the motion is smooth over h).
+    if (w.increment_before_last.size() == w.last_increment.size())
+      du = 2.0 * w.last_increment - w.increment_before_last;
+    else
+      du = w.last_increment;
     r = SolvePcg(
         m.pattern, w.system_values, rhs, du,
         [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
@@ -303,6 +308,7 @@ StepReport FemBody::Step() {
     report.accepted = false;
     report.rejection_reason = s.body_name + ": step " + std::to_string(state_.steps) + " rolled back: " + why;
     w.last_increment.setZero();
+    w.increment_before_last.resize(0);
     return report;
   };
 
@@ -331,6 +337,7 @@ StepReport FemBody::Step() {
   state_.acceleration_m_per_s2 = std::move(a_next);
   state_.time_s += s.time_step_s;
   ++state_.steps;
+  if (s.solver == LinearSolverKind::kRotatedFactorPcg) w.increment_before_last.swap(w.last_increment);
   w.last_increment = du;
   report.accepted = true;
   report.energy_J = energy_after;
@@ -378,12 +385,14 @@ PointCompliance FemBody::Compliance(const std::vector<TetLocation>& points) {
   for (int j = 0; j < cols; ++j) {
     Eigen::VectorXd x;
     work_->last_increment.setZero();
+    work_->increment_before_last.resize(0);
     // Accurate solves: the contact solver needs C itself, not a 20-iteration estimate.
     if (!SolveSystem(jt.col(j), x, 1e-12, 10 * n, nullptr))
       throw FemError(m.settings.body_name + ": compliance solve failed (system not positive definite)");
     c.response.col(j) = x;
   }
   work_->last_increment.setZero();
+  work_->increment_before_last.resize(0);
   c.delassus = jt.transpose() * c.response;
   return c;
 }
