@@ -27,12 +27,23 @@ Eigen::Matrix3d RotationByQuaternionIteration(const Eigen::Matrix3d& F, Eigen::V
     // turns toward F.
     const Eigen::Matrix3d a = r.transpose() * F;
     const Eigen::Vector3d torque(a(2, 1) - a(1, 2), a(0, 2) - a(2, 0), a(1, 0) - a(0, 1));
-    const double trace = a.trace();
-    Eigen::Matrix3d j = -0.5 * (a + a.transpose());
-    j.diagonal().array() += trace;
-    const double m1 = j(0, 0), m2 = j(0, 0) * j(1, 1) - j(0, 1) * j(0, 1), m3 = j.determinant();
-    const bool newton = m1 > 1e-3 * std::abs(trace) && m2 > 0.0 && m3 > 0.0;
-    const Eigen::Vector3d omega = newton ? Eigen::Vector3d(j.inverse() * torque) : torque / (std::abs(trace) + 1e-9);
+    const double trace = a(0, 0) + a(1, 1) + a(2, 2);
+    // J = tr S I - S (symmetric): entries, adjugate, Sylvester's test, J^-1 torque = adj(J) torque / det J.
+    const double j00 = trace - a(0, 0), j11 = trace - a(1, 1), j22 = trace - a(2, 2);
+    const double j01 = -0.5 * (a(0, 1) + a(1, 0)), j02 = -0.5 * (a(0, 2) + a(2, 0)), j12 = -0.5 * (a(1, 2) + a(2, 1));
+    const double c00 = j11 * j22 - j12 * j12, c01 = j02 * j12 - j01 * j22, c02 = j01 * j12 - j02 * j11;
+    const double c11 = j00 * j22 - j02 * j02, c12 = j01 * j02 - j00 * j12, c22 = j00 * j11 - j01 * j01;
+    const double det = j00 * c00 + j01 * c01 + j02 * c02;
+    const bool newton = j00 > 1e-3 * std::abs(trace) && c22 > 0.0 && det > 0.0;
+    Eigen::Vector3d omega;
+    if (newton) {
+      omega = Eigen::Vector3d(c00 * torque.x() + c01 * torque.y() + c02 * torque.z(),
+                              c01 * torque.x() + c11 * torque.y() + c12 * torque.z(),
+                              c02 * torque.x() + c12 * torque.y() + c22 * torque.z()) /
+              det;
+    } else {
+      omega = torque / (std::abs(trace) + 1e-9);
+    }
     const double angle_squared = omega.squaredNorm();
     if (angle_squared < 1e-24) break;
     // Turn about omega by 2 atan(|omega| / 2) (the Cayley map: no sin/cos; the same step to second
