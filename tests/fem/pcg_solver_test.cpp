@@ -1,0 +1,87 @@
+#include "physics/fem/pcg_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "physics/fem/elastic_forces.h"
+#include "physics/fem/fem_model.h"
+#include "tests/fem/fem_test_support.h"
+
+namespace vesica::physics {
+namespace {
+
+// M/h^2 + K of a small free box (h = 10 ms), symmetric positive definite, as pattern values.
+struct SmallSystem {
+  FemModel model;
+  Eigen::VectorXd values;
+  Eigen::MatrixXd dense;
+};
+
+SmallSystem MakeSystem() {
+  FemSettings s;
+  s.material = {2300.0, 0.45, 1000.0};
+  SmallSystem sys{BuildFemModel(MakeBoxTetMesh({0.08, 0.03, 0.03}, {4, 2, 2}), s, {}), {}, {}};
+  sys.values = sys.model.linear_stiffness_values;
+  for (int i = 0; i < sys.model.num_dofs(); ++i)
+    sys.values[sys.model.pattern.diagonal_slot[i]] += 1e4 * sys.model.lumped_mass_kg[i];
+  sys.dense = Eigen::MatrixXd(PatternMatrix(sys.model.pattern, sys.values));
+  return sys;
+}
+
+// Block lower part L (node j < node i), diagonal blocks D, upper part U of the dense matrix.
+Eigen::MatrixXd BlockPart(const Eigen::MatrixXd& a, int part) {  // -1 lower, 0 diagonal, 1 upper
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(a.rows(), a.cols());
+  for (int r = 0; r < a.rows(); ++r)
+    for (int c = 0; c < a.cols(); ++c) {
+      const int side = (c / 3 > r / 3) - (c / 3 < r / 3);
+      if (side == part) out(r, c) = a(r, c);
+    }
+  return out;
+}
+
+Eigen::VectorXd TestVector(int n) {
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::sin(0.3 * i) + 0.2;
+  return b;
+}
+
+TEST(PcgSolverTest, GaussSeidelSweepsAreTheBlockTriangularSolves) {
+  const SmallSystem sys = MakeSystem();
+  BlockJacobiPreconditioner jacobi;
+  jacobi.Compute(sys.model.pattern, sys.values);
+  const Eigen::VectorXd b = TestVector(sys.model.num_dofs());
+  const Eigen::MatrixXd d = BlockPart(sys.dense, 0), l = BlockPart(sys.dense, -1), u = BlockPart(sys.dense, 1);
+  // Forward from zero: (D + L)^-1 b.
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  BlockGaussSeidelSweep(sys.model.pattern, sys.values, jacobi.inverse_blocks(), b, x, true);
+  const Eigen::MatrixXd dl = d + l, du = d + u;
+  const Eigen::VectorXd forward = dl.partialPivLu().solve(b);  // block triangular: its 3x3 diagonal blocks are full
+  EXPECT_LT((x - forward).norm(), 1e-12 * forward.norm());
+  // -U x is then the residual b - A x.
+  Eigen::VectorXd ux;
+  UpperBlocksTimes(sys.model.pattern, sys.values, x, ux);
+  EXPECT_LT((ux - u * x).norm(), 1e-12 * (u * x).norm());
+  EXPECT_LT((b - sys.dense * x + ux).norm(), 1e-10 * b.norm());
+  // Backward from x0: x0 + (D + U)^-1 (b - A x0).
+  const Eigen::VectorXd x0 = x;
+  BlockGaussSeidelSweep(sys.model.pattern, sys.values, jacobi.inverse_blocks(), b, x, false);
+  const Eigen::VectorXd backward = x0 + du.partialPivLu().solve(b - sys.dense * x0);
+  EXPECT_LT((x - backward).norm(), 1e-12 * backward.norm());
+}
+
+TEST(PcgSolverTest, PcgWithBlockJacobiSolvesTheSystem) {
+  const SmallSystem sys = MakeSystem();
+  BlockJacobiPreconditioner jacobi;
+  jacobi.Compute(sys.model.pattern, sys.values);
+  const Eigen::VectorXd b = TestVector(sys.model.num_dofs());
+  Eigen::VectorXd x;
+  const PcgResult r = SolvePcg(
+      sys.model.pattern, sys.values, b, x,
+      [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { jacobi.Apply(res, z); }, 1e-12, 1000);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LT((sys.dense * x - b).norm(), 1e-11 * b.norm());
+}
+
+}  // namespace
+}  // namespace vesica::physics
