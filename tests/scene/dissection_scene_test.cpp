@@ -251,7 +251,7 @@ TEST_F(DissectionSceneTest, RenderedForceIsContinuousAcrossPhysicsSteps) {
   }
   EXPECT_GT(max_force, 0.03);
   ASSERT_GT(max_hold_jump, 0.0);
-  // Stated bound (README, haptics): a physics step changes the rendered force no more than a
+  // Stated bound (docs/scene.md): a physics step changes the rendered force no more than a
   // 1 ms tick inside a step does (plus 0.1 mN), and less than a third of the zero-order hold's jump.
   EXPECT_LE(max_boundary, max_interior + 1e-4)
       << "boundary " << max_boundary << " N, interior " << max_interior << " N, hold " << max_hold_jump << " N";
