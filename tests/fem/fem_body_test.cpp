@@ -285,6 +285,26 @@ TEST(FemBodyTest, RotatedFactorPcgMatchesExactStepsWithConsistentMassAndPartlyFi
   EXPECT_LT((final_u[2] - final_u[0]).cwiseAbs().maxCoeff(), 1e-8 * final_u[0].cwiseAbs().maxCoeff());
 }
 
+// The contact solver's compliance needs accurate solves (tolerance 1e-12): PCG preconditioned by
+// the float rest factor (a 2,900-node body: CHOLMOD picks a supernodal factor, so the float copy is
+// used) still gets there, and agrees with the CHOLMOD compliance.
+TEST(FemBodyTest, RotatedFactorPcgComplianceMatchesCholmod) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {28, 9, 9});
+  const std::vector<TetLocation> points = {{mesh.num_tets() - 1, {0.1, 0.2, 0.3, 0.4}},
+                                           {mesh.num_tets() / 2, {0.25, 0.25, 0.25, 0.25}}};
+  Eigen::MatrixXd delassus[2];
+  for (int k = 0; k < 2; ++k) {
+    FemSettings s;
+    s.element_model = ElementModel::kCorotational;
+    s.material = {2300.0, 0.45, 1000.0};
+    s.solver = k == 0 ? LinearSolverKind::kCholmod : LinearSolverKind::kRotatedFactorPcg;
+    auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
+    FemBody body(model);
+    delassus[k] = body.Compliance(points).delassus;
+  }
+  EXPECT_LT((delassus[1] - delassus[0]).cwiseAbs().maxCoeff(), 1e-9 * delassus[0].cwiseAbs().maxCoeff());
+}
+
 // A linear body's rest factor is its system matrix: PCG converges in one iteration with the double
 // factor (two or three with the float copy), also after attachment springs change the system (the
 // rest factor is rebuilt with them).
