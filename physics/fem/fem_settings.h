@@ -26,7 +26,8 @@ enum class LinearSolverKind {
   /// once, again only when the attachment springs change) turned into the current frame per node:
   /// z = R S0^-1 R^T r, R the nodes' rotations averaged from their elements' (warped stiffness as
   /// a preconditioner). Converges in a few iterations under large rotations; pcg_relative_tolerance
-  /// and pcg_max_iterations apply. A linear body converges in one iteration.
+  /// and pcg_max_iterations apply. See rotated_factor_single_precision and
+  /// rotated_factor_gauss_seidel; docs/performance/fem.md has the measured trade-offs.
   kRotatedFactorPcg,
 };
 
