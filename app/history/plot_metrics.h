@@ -1,0 +1,45 @@
+#pragma once
+// The metrics a learning curve can plot, each with its label, display unit and the factor from
+// the stored SI value to that unit. Booleans (free, perforation, success) are not plotted; the
+// session table shows them.
+
+#include <array>
+#include <string>
+#include <string_view>
+
+#include "app/records/metric_fields.h"
+
+namespace vesica::app {
+
+struct PlotMetric {
+  const char* key;      // the kMetricFields column name ("liver_damage_m2")
+  const char* label;    // axis and chooser text ("Liver damage")
+  const char* unit;     // display unit, UTF-8 ("mm²"); empty for counts
+  double scale;         // display value = stored SI value * scale
+  MetricMember member;  // the SessionMetrics field
+};
+
+inline constexpr std::array<PlotMetric, 11> kPlotMetrics{{
+    {"duration_s", "Duration", "s", 1.0, &SessionMetrics::duration_s},
+    {"path_length_left_m", "Path length, grasper", "cm", 100.0, &SessionMetrics::path_length_left_m},
+    {"path_length_right_m", "Path length, hook", "cm", 100.0, &SessionMetrics::path_length_right_m},
+    {"slips", "Slips", "", 1.0, &SessionMetrics::slips},
+    {"cautery_on_s", "Cautery on", "s", 1.0, &SessionMetrics::cautery_on_s},
+    {"liver_damage_m2", "Liver damage", "mm²", 1e6, &SessionMetrics::liver_damage_m2},
+    {"gallbladder_damage_m2", "Gallbladder damage", "mm²", 1e6, &SessionMetrics::gallbladder_damage_m2},
+    {"max_force_N", "Max force", "N", 1.0, &SessionMetrics::max_force_N},
+    {"mean_force_N", "Mean force", "N", 1.0, &SessionMetrics::mean_force_N},
+    {"tissue_removed_fraction", "Tissue removed", "%", 100.0, &SessionMetrics::tissue_removed_fraction},
+    {"springs_cut", "Springs cut", "", 1.0, &SessionMetrics::springs_cut},
+}};
+
+/// The metric's value for one session in its display unit: stored value * metric.scale.
+double PlotValue(const PlotMetric& metric, const SessionMetrics& metrics);
+
+/// The index in kPlotMetrics of the metric with this key, or -1.
+int FindPlotMetric(std::string_view key);
+
+/// "Liver damage (mm²)", or the label alone for a unitless metric.
+std::string AxisTitle(const PlotMetric& metric);
+
+}  // namespace vesica::app
