@@ -13,10 +13,10 @@
 namespace vesica::app {
 
 struct KeyboardStep {
-  double angle_rad = 0.01;       ///< per key press, yaw/pitch/roll
-  double insertion_m = 0.002;    ///< per key press
-  double jaw_open_rad = 0.6;     ///< jaw angle when open
-  double max_pitch_rad = 1.2;    ///< keeps the shaft away from the abdominal wall plane
+  double angle_rad = 0.01;     ///< per key press, yaw/pitch/roll
+  double insertion_m = 0.002;  ///< per key press
+  double jaw_open_rad = 0.6;   ///< jaw angle when open
+  double max_pitch_rad = 1.2;  ///< keeps the shaft away from the abdominal wall plane
 };
 
 /// Applies one key (an ASCII character, case-insensitive) to the poses of instruments 0 (left)

@@ -1,18 +1,25 @@
-// vesica-trainer: the laparoscopic cholecystectomy trainer. Opens the laparoscope view of a
-// scenario in a window, or renders it off-screen to a PNG (--headless).
+// vesica-trainer: the laparoscopic cholecystectomy trainer. Runs a dissection session of a
+// scenario in a window (keyboard or a recorded session drives the instruments; the finished
+// session is stored in the records database), or renders the scene at rest off-screen to a PNG
+// (--headless; vesica-replay runs whole sessions headless).
+
+#include <QVTKOpenGLNativeWidget.h>
+#include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 #include <QApplication>
 #include <QSurfaceFormat>
 #include <QTimer>
-#include <QVTKOpenGLNativeWidget.h>
-#include <spdlog/spdlog.h>
-
+#include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <memory>
 
+#include "app/records/default_location.h"
+#include "app/records/session_store.h"
 #include "app/render/laparoscope_view.h"
 #include "app/scenario/scenario_loader.h"
+#include "app/session/dissection_setup.h"
 #include "app/trainer/trainer_window.h"
 
 int main(int argc, char** argv) {
@@ -29,6 +36,20 @@ int main(int argc, char** argv) {
   cli.add_option("--height", height, "image height in pixels")->check(CLI::Range(64, 8192));
   cli.add_option("--quit-after-ms", quit_after_ms, "close the window after this many ms (tests, demos)");
   cli.add_option("--grab", grab, "with --quit-after-ms: save a PNG of the laparoscope view before closing");
+  vesica::app::TrainerOptions options;
+  if (const char* user = std::getenv("USER"); user != nullptr && *user != '\0') options.trainee_id = user;
+  std::string replay, records = "default", recordings_dir = "default";
+  bool fast = false;
+  cli.add_option("--trainee", options.trainee_id, "trainee id the session is stored under")->capture_default_str();
+  cli.add_option("--replay", replay, "drive both instruments from a recorded session (docs/recording.md)");
+  cli.add_flag("--fast", fast, "with --replay: run the physics as fast as it goes instead of in real time");
+  cli.add_option("--records", records,
+                 "where finished sessions are stored: SQLite file or PostgreSQL connection string; 'default' = "
+                 "$VESICA_RECORDS_DB, else $XDG_DATA_HOME/vesica/sessions.sqlite; 'none' = not stored")
+      ->capture_default_str();
+  cli.add_option("--recordings-dir", recordings_dir,
+                 "where each session's input is saved ('default' = next to the records database, 'none')")
+      ->capture_default_str();
   CLI11_PARSE(cli, argc, argv);
 
   std::unique_ptr<vesica::app::LaparoscopeView> view;
@@ -49,18 +70,43 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  std::shared_ptr<const vesica::physics::DissectionModel> model;
+  try {
+    if (records == "default") records = vesica::app::DefaultSessionStoreLocation();
+    if (records != "none") options.records_location = records;
+    if (recordings_dir == "default") {
+      const std::filesystem::path db(records);
+      options.recordings_dir = records != "none" && !vesica::app::IsConnectionString(records)
+                                   ? db.parent_path() / "recordings"
+                                   : std::filesystem::path();
+    } else if (recordings_dir != "none") {
+      options.recordings_dir = recordings_dir;
+    }
+    options.replay_file = replay;
+    options.real_time = !fast;
+    const auto meshes = vesica::app::LoadSceneMeshes(scenario);
+    spdlog::info("building the dissection scene (the liver's Green's functions are cached after the first run)");
+    model = vesica::app::BuildDissectionModelFor(scenario, meshes);
+    spdlog::info("{} connective-tissue springs; records: {}", model->tissue.springs.size(),
+                 options.records_location.empty() ? "not stored" : options.records_location);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+
   QSurfaceFormat::setDefaultFormat([] {
     auto format = QVTKOpenGLNativeWidget::defaultFormat();
     format.setSamples(0);
     return format;
   }());
   QApplication app(argc, argv);
-  vesica::app::TrainerWindow window(scenario, std::move(view));
+  vesica::app::TrainerWindow window(scenario, std::move(view), model, options);
   window.resize(width, height);
   window.show();
   if (quit_after_ms > 0) {
     QTimer::singleShot(quit_after_ms, &window, [&] {
-      if (!grab.empty() && !window.centralWidget()->grab().save(QString::fromStdString(grab))) spdlog::error("could not save {}", grab);
+      if (!grab.empty() && !window.centralWidget()->grab().save(QString::fromStdString(grab)))
+        spdlog::error("could not save {}", grab);
       app.quit();
     });
   }

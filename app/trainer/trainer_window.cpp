@@ -1,18 +1,45 @@
 #include "app/trainer/trainer_window.h"
 
-#include <QKeyEvent>
-#include <QStatusBar>
 #include <QVTKOpenGLNativeWidget.h>
+#include <vtkCamera.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkRenderer.h>
 
+#include <QAction>
+#include <QDockWidget>
+#include <QKeyEvent>
+#include <QLabel>
+#include <QMenuBar>
+#include <QStatusBar>
+#include <QTimer>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+
+#include "app/history/history_window.h"
+#include "app/history/metrics_panel.h"
+#include "app/records/session_store.h"
+#include "app/session/dissection_setup.h"
 #include "app/trainer/keyboard_control.h"
+#include "device/input/input_recording.h"
+#include "device/input/replay_input.h"
 
 namespace vesica::app {
 
-TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<LaparoscopeView> view)
-    : view_(std::move(view)) {
-  setWindowTitle(QString::fromStdString("Vesica — " + scenario.name));
+namespace {
+std::int64_t UnixNow() {
+  return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+QString Rate(const char* name, const LoopRate& r) {
+  return QString::asprintf("%-8s %7.1f Hz  jitter %.2f ms  worst %.1f ms", name, r.rate_hz, r.jitter_ms, r.worst_ms);
+}
+}  // namespace
+
+TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<LaparoscopeView> view,
+                             std::shared_ptr<const physics::DissectionModel> model, const TrainerOptions& options)
+    : scenario_(scenario), options_(options), view_(std::move(view)) {
+  setWindowTitle(QString::fromStdString("Vesica — " + scenario.name + " — " + options.trainee_id));
   vtk_widget_ = new QVTKOpenGLNativeWidget(this);
   auto window = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
   window->SetMultiSamples(0);  // keeps translucent membranes and smoke visible on Mesa
@@ -22,26 +49,190 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
   for (const auto& instrument : scenario.instruments) max_insertion_m_.push_back(instrument.shaft_length_m);
   vtk_widget_->installEventFilter(this);
   vtk_widget_->setFocus();
-  statusBar()->showMessage(QString::fromStdString(KeyboardHelp()));
+
+  diagnostics_ = new QLabel(vtk_widget_);
+  diagnostics_->setObjectName("diagnostics");
+  diagnostics_->setStyleSheet(
+      "QLabel { color: #e8e8e8; background: rgba(0,0,0,140); font-family: monospace; padding: 4px; }");
+  diagnostics_->move(8, 8);
+
+  metrics_panel_ = new MetricsPanel(this);
+  auto* dock = new QDockWidget("Session metrics", this);
+  dock->setObjectName("metrics_dock");
+  dock->setWidget(metrics_panel_);
+  addDockWidget(Qt::RightDockWidgetArea, dock);
+  dock->hide();
+
+  QMenu* session = menuBar()->addMenu("&Session");
+  session->addAction("&Pause / resume (P)", [this] { runner_->SetPaused(!runner_->Status().paused); });
+  session->addAction("&Reset (R)", [this] {
+    runner_->Reset();
+    started_unix_s_ = UnixNow();
+  });
+  session->addAction("&End session (Enter)", [this] { EndSession(); });
+  QMenu* view_menu = menuBar()->addMenu("&View");
+  view_menu->addAction("&Diagnostics overlay (F2)", [this] { diagnostics_->setVisible(!diagnostics_->isVisible()); });
+  menuBar()->addAction("&History...", [this] { OpenHistory(); });
+
+  // The session: replay or live keyboard input, starting from the view's initial poses.
+  poses_ = view_->poses();
+  std::shared_ptr<device::InstrumentInputSource> input;
+  RunnerOptions ro;
+  ro.scenario_name = scenario.name;
+  ro.real_time = options.real_time;
+  if (!options.replay_file.empty()) {
+    auto replay = std::make_shared<device::ReplayInput>(device::ReadInputRecording(options.replay_file));
+    ro.end_after_s = replay->end_time_s();
+    input = replay;
+  } else {
+    device::InputFrame initial;
+    for (size_t i = 0; i < 2 && i < poses_.size(); ++i) initial.instruments[i].pose = poses_[i];
+    live_input_ = std::make_shared<LiveInput>(initial);
+    input = live_input_;
+  }
+  runner_ = std::make_unique<SessionRunner>(std::move(model), DefaultCauteryParams(), input, ro);
+  started_unix_s_ = UnixNow();
+  runner_->Start();
+
+  timer_ = new QTimer(this);
+  connect(timer_, &QTimer::timeout, this, [this] { Tick(); });
+  timer_->start(16);
+  statusBar()->showMessage(
+      QString::fromStdString((live_input_ ? KeyboardHelp() : "replaying " + options.replay_file.string()) +
+                             "  |  P pause, R reset, Enter end, +/- zoom, arrows look around, F2 diagnostics"));
   setToolTip(QString::fromStdString(scenario.description));
   resize(1280, 720);
 }
 
+TrainerWindow::~TrainerWindow() = default;
+
+void TrainerWindow::EndSession() { runner_->End(); }
+
+void TrainerWindow::Tick() {
+  render_stats_.Tick(LoopStats::Clock::now());
+  view_->Update(runner_->LatestFrame());
+  vtk_widget_->renderWindow()->Render();
+  const RunnerStatus s = runner_->Status();
+  if (diagnostics_->isVisible()) {
+    QString text = QString::asprintf("session  %7.2f s%s\n", s.session_time_s, s.paused ? "  (paused)" : "");
+    text += Rate("physics", s.physics) + "\n" + Rate("haptic", s.haptic) + "\n" +
+            Rate("render", render_stats_.Snapshot()) + "\n";
+    text += QString::asprintf("force    grasper %.2f N  hook %.2f N\n", s.haptic_force_N[0].norm(),
+                              s.haptic_force_N[1].norm());
+    text += QString::asprintf("springs  %d of %d cut", s.metrics.springs_cut, s.metrics.springs_total);
+    diagnostics_->setText(text);
+    diagnostics_->adjustSize();
+  }
+  if (s.finished && !finished_shown_) OnFinished(s);
+}
+
+void TrainerWindow::OnFinished(const RunnerStatus& status) {
+  finished_shown_ = true;
+  metrics_panel_->Show(status.metrics);
+  if (auto* dock = findChild<QDockWidget*>("metrics_dock")) dock->show();
+  if (!status.error.empty()) last_error_ = "physics stopped: " + status.error;
+
+  SessionRecord record;
+  record.trainee_id = options_.trainee_id;
+  record.scenario = scenario_.name;
+  record.started_unix_s = started_unix_s_;
+  record.ended_unix_s = std::max(started_unix_s_, UnixNow());
+  record.metrics = status.metrics;
+  record.station = options_.station;
+  try {
+    if (!options_.recordings_dir.empty()) {
+      std::filesystem::create_directories(options_.recordings_dir);
+      char name[96];
+      std::snprintf(name, sizeof name, "session-%lld.csv", static_cast<long long>(started_unix_s_));
+      const std::filesystem::path path = options_.recordings_dir / (options_.trainee_id + "-" + name);
+      const device::InputRecording rec = runner_->Recording();
+      if (!rec.frames.empty()) {
+        device::WriteInputRecording(path, rec);
+        record.input_recording_path = path.string();
+      }
+    }
+    if (!options_.records_location.empty()) {
+      stored_id_ = OpenSessionStore(options_.records_location)->Add(record);
+      stored_ = true;
+    }
+    statusBar()->showMessage(QString::fromStdString(
+        std::string("Session finished") + (stored_ ? " and saved" : "") +
+        (record.input_recording_path.empty() ? "" : "; input in " + record.input_recording_path)));
+  } catch (const std::exception& e) {
+    last_error_ = std::string("could not save the session: ") + e.what();
+    statusBar()->showMessage(QString::fromStdString(last_error_));
+  }
+}
+
+void TrainerWindow::OpenHistory() {
+  if (options_.records_location.empty()) return;
+  try {
+    auto* history = new HistoryWindow(OpenSessionStore(options_.records_location), this);
+    history->setAttribute(Qt::WA_DeleteOnClose);
+    history->setWindowFlag(Qt::Window);
+    history->show();
+  } catch (const std::exception& e) {
+    last_error_ = e.what();
+    statusBar()->showMessage(QString::fromStdString(last_error_));
+  }
+}
+
 bool TrainerWindow::eventFilter(QObject* watched, QEvent* event) {
   if (watched == vtk_widget_ && event->type() == QEvent::KeyPress) {
-    const QString text = static_cast<QKeyEvent*>(event)->text();
-    if (text.size() == 1) {
-      auto poses = view_->poses();
-      if (ApplyInstrumentKey(text.at(0).toLatin1(), poses, max_insertion_m_, pedal_)) {
-        for (std::size_t i = 0; i < poses.size(); ++i) view_->SetInstrumentPose(i, poses[i]);
-        vtk_widget_->renderWindow()->Render();
+    auto* key = static_cast<QKeyEvent*>(event);
+    vtkCamera* camera = view_->renderer()->GetActiveCamera();
+    switch (key->key()) {
+      case Qt::Key_P:
+        runner_->SetPaused(!runner_->Status().paused);
         return true;
+      case Qt::Key_R:
+        runner_->Reset();
+        started_unix_s_ = UnixNow();
+        return true;
+      case Qt::Key_Return:
+      case Qt::Key_Enter:
+        EndSession();
+        return true;
+      case Qt::Key_F2:
+        diagnostics_->setVisible(!diagnostics_->isVisible());
+        return true;
+      case Qt::Key_Plus:
+      case Qt::Key_Equal:
+        camera->Zoom(1.1);
+        return true;
+      case Qt::Key_Minus:
+        camera->Zoom(1.0 / 1.1);
+        return true;
+      case Qt::Key_Left:
+        camera->Azimuth(2.0);
+        return true;
+      case Qt::Key_Right:
+        camera->Azimuth(-2.0);
+        return true;
+      case Qt::Key_Up:
+        camera->Elevation(2.0);
+        camera->OrthogonalizeViewUp();
+        return true;
+      case Qt::Key_Down:
+        camera->Elevation(-2.0);
+        camera->OrthogonalizeViewUp();
+        return true;
+      default:
+        break;
+    }
+    const QString text = key->text();
+    if (live_input_ && text.size() == 1 &&
+        ApplyInstrumentKey(text.at(0).toLatin1(), poses_, max_insertion_m_, pedal_)) {
+      for (int i = 0; i < 2 && i < static_cast<int>(poses_.size()); ++i) {
+        device::InstrumentInput in;
+        in.pose = poses_[static_cast<size_t>(i)];
+        in.pedal = i == 1 && pedal_;
+        live_input_->Set(i, in);
       }
+      return true;
     }
   }
   return QMainWindow::eventFilter(watched, event);
 }
-
-TrainerWindow::~TrainerWindow() = default;
 
 }  // namespace vesica::app

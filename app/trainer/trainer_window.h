@@ -1,30 +1,80 @@
 #pragma once
-// The trainer's main window: the laparoscope view in a QVTKOpenGLNativeWidget with a status line.
+// The trainer's main window: the laparoscope view (QVTKOpenGLNativeWidget) of a running
+// dissection session, a diagnostics overlay (loop rates and jitter, forces), keyboard control of
+// both instruments, pause/reset/end, camera zoom and look-around, and at the end the metrics
+// panel; the finished session is stored in the records database with its input recording.
+// The window only reads snapshots: it never blocks the physics or haptic loops (SessionRunner).
 
 #include <QMainWindow>
+#include <filesystem>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "app/render/laparoscope_view.h"
+#include "app/session/live_input.h"
+#include "app/session/session_runner.h"
 
+class QLabel;
+class QTimer;
 class QVTKOpenGLNativeWidget;
 
 namespace vesica::app {
 
+class MetricsPanel;
+
+struct TrainerOptions {
+  std::string trainee_id = "trainee";
+  std::string records_location;          ///< SessionStore location; empty: don't store
+  std::filesystem::path recordings_dir;  ///< where session inputs are saved; empty: not saved
+  std::filesystem::path replay_file;     ///< drive the instruments from this recording
+  bool real_time = true;                 ///< false: replay as fast as the physics goes (tests)
+  std::string station = "vesica";
+};
+
 class TrainerWindow : public QMainWindow {
  public:
-  TrainerWindow(const Scenario& scenario, std::unique_ptr<LaparoscopeView> view);
+  /// Builds the session (model already built) and starts its loops.
+  TrainerWindow(const Scenario& scenario, std::unique_ptr<LaparoscopeView> view,
+                std::shared_ptr<const physics::DissectionModel> model, const TrainerOptions& options);
   ~TrainerWindow() override;
 
+  /// Ends the session now (as the End key does).
+  void EndSession();
+  bool session_finished() const { return stored_ || finished_shown_; }
+  /// Id of the stored record, once the finished session was written.
+  std::optional<std::int64_t> stored_session_id() const { return stored_id_; }
+  MetricsPanel* metrics_panel() const { return metrics_panel_; }
+  QLabel* diagnostics() const { return diagnostics_; }
+  /// The last error shown (records not writable, physics stopped); empty if none.
+  const std::string& last_error() const { return last_error_; }
+
  protected:
-  /// Instrument keys (keyboard_control.h) reach us before VTK's camera interactor sees them.
   bool eventFilter(QObject* watched, QEvent* event) override;
 
  private:
+  void Tick();  // render timer: snapshot -> view, overlay, end-of-session handling
+  void OnFinished(const RunnerStatus& status);
+  void OpenHistory();
+
+  Scenario scenario_;
+  TrainerOptions options_;
   std::unique_ptr<LaparoscopeView> view_;
+  std::shared_ptr<LiveInput> live_input_;  // null when replaying
+  std::unique_ptr<SessionRunner> runner_;
   QVTKOpenGLNativeWidget* vtk_widget_ = nullptr;
+  QLabel* diagnostics_ = nullptr;
+  MetricsPanel* metrics_panel_ = nullptr;
+  QTimer* timer_ = nullptr;
+  LoopStats render_stats_;
+  std::vector<physics::InstrumentPose> poses_;
   std::vector<double> max_insertion_m_;
   bool pedal_ = false;
+  bool finished_shown_ = false, stored_ = false;
+  std::optional<std::int64_t> stored_id_;
+  std::string last_error_;
+  std::int64_t started_unix_s_ = 0;
 };
 
 }  // namespace vesica::app

@@ -1,0 +1,143 @@
+// The trainer window driven like a user would with Qt's test tools: the default scenario, a
+// session run from a recording, the metrics panel read at the end, the session found in the
+// records database with the same metrics, its input saved and replayable; keys pause the
+// session and move the instruments.
+
+#include <QVTKOpenGLNativeWidget.h>
+#include <gtest/gtest.h>
+
+#include <QApplication>
+#include <QLabel>
+#include <QSurfaceFormat>
+#include <QTest>
+#include <filesystem>
+#include <memory>
+
+#include "app/history/metrics_panel.h"
+#include "app/records/session_store.h"
+#include "app/render/scene_meshes.h"
+#include "app/scenario/scenario_loader.h"
+#include "app/session/dissection_setup.h"
+#include "app/trainer/trainer_window.h"
+#include "device/input/input_recording.h"
+
+namespace vesica::app {
+namespace {
+
+class TrainerGuiTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    scenario_ = new Scenario(LoadScenario(DefaultScenarioPath()));
+    meshes_ = new SceneMeshes(LoadSceneMeshes(*scenario_));
+    model_ = BuildDissectionModelFor(*scenario_, *meshes_);
+  }
+  static void TearDownTestSuite() {
+    model_.reset();
+    delete meshes_;
+    delete scenario_;
+  }
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("vesica_trainer_gui_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::unique_ptr<TrainerWindow> MakeWindow(const TrainerOptions& options) {
+    auto w = std::make_unique<TrainerWindow>(*scenario_, std::make_unique<LaparoscopeView>(*scenario_, *meshes_),
+                                             model_, options);
+    w->resize(800, 450);
+    w->show();
+    return w;
+  }
+  static QString Label(TrainerWindow& w, const char* name) {
+    auto* label = w.metrics_panel()->findChild<QLabel*>(name);
+    return label ? label->text() : QString("<no label %1>").arg(name);
+  }
+  static Scenario* scenario_;
+  static SceneMeshes* meshes_;
+  static std::shared_ptr<const physics::DissectionModel> model_;
+  std::filesystem::path dir_;
+};
+Scenario* TrainerGuiTest::scenario_ = nullptr;
+SceneMeshes* TrainerGuiTest::meshes_ = nullptr;
+std::shared_ptr<const physics::DissectionModel> TrainerGuiTest::model_;
+
+TEST_F(TrainerGuiTest, ReplayedSessionShowsItsMetricsAndIsStored) {
+  // The first 3 s of the committed dissection: approach, grasp, retraction.
+  device::InputRecording rec =
+      device::ReadInputRecording(std::filesystem::path(VESICA_SOURCE_DIR) / "data/recordings/dissection.csv");
+  rec.frames.resize(600);
+  const auto replay = dir_ / "head.csv";
+  device::WriteInputRecording(replay, rec);
+
+  TrainerOptions options;
+  options.trainee_id = "resident-7";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  options.recordings_dir = dir_ / "recordings";
+  options.replay_file = replay;
+  options.real_time = false;
+  auto w = MakeWindow(options);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->session_finished(); }, 120000)) << w->last_error();
+  EXPECT_TRUE(w->last_error().empty()) << w->last_error();
+  ASSERT_TRUE(w->stored_session_id().has_value());
+
+  // The panel shows the stored metrics.
+  auto store = OpenSessionStore(options.records_location);
+  const auto sessions = store->List("resident-7");
+  ASSERT_EQ(sessions.size(), 1u);
+  const SessionRecord& r = sessions[0].record;
+  EXPECT_EQ(r.scenario, scenario_->name);
+  EXPECT_NEAR(r.metrics.duration_s, 3.0, 0.01);
+  EXPECT_GT(r.metrics.path_length_left_m, 0.0);
+  EXPECT_EQ(r.metrics.springs_total, static_cast<int>(model_->tissue.springs.size()));
+  EXPECT_FALSE(r.metrics.gallbladder_free);
+  EXPECT_EQ(Label(*w, "metric_slips"), QString::number(r.metrics.slips));
+  EXPECT_TRUE(Label(*w, "metric_success").startsWith("no")) << Label(*w, "metric_success").toStdString();
+  // The session's input was saved, and replays to the recording it came from.
+  ASSERT_FALSE(r.input_recording_path.empty());
+  const device::InputRecording saved = device::ReadInputRecording(r.input_recording_path);
+  ASSERT_GE(saved.frames.size(), 599u);  // until the replay's last frame time, 2.995 s
+  EXPECT_EQ(saved.frames[300].instruments[0].pose.jaw_angle_rad, rec.frames[300].instruments[0].pose.jaw_angle_rad);
+  EXPECT_EQ(saved.frames[300].instruments[1].pose.insertion_m, rec.frames[300].instruments[1].pose.insertion_m);
+  // The diagnostics overlay reports the three loops.
+  const QString diag = w->diagnostics()->text();
+  for (const char* loop : {"physics", "haptic", "render"}) EXPECT_TRUE(diag.contains(loop)) << diag.toStdString();
+}
+
+TEST_F(TrainerGuiTest, KeysMoveTheInstrumentsPauseAndEndTheSession) {
+  TrainerOptions options;
+  options.trainee_id = "resident-8";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  auto w = MakeWindow(options);
+  QWidget* gl = w->findChild<QVTKOpenGLNativeWidget*>();
+  ASSERT_NE(gl, nullptr);
+  QTest::qWait(300);
+  for (int i = 0; i < 10; ++i) QTest::keyClick(gl, Qt::Key_E);  // grasper in (E inserts... or withdraws)
+  for (int i = 0; i < 5; ++i) QTest::keyClick(gl, Qt::Key_D);   // grasper yaw
+  QTest::qWait(300);
+  QTest::keyClick(gl, Qt::Key_P);
+  QTest::qWait(100);
+  EXPECT_TRUE(w->diagnostics()->text().contains("paused")) << w->diagnostics()->text().toStdString();
+  QTest::keyClick(gl, Qt::Key_P);
+  QTest::keyClick(gl, Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->session_finished(); }, 30000));
+  auto store = OpenSessionStore(options.records_location);
+  const auto sessions = store->List("resident-8");
+  ASSERT_EQ(sessions.size(), 1u);
+  EXPECT_GT(sessions[0].record.metrics.path_length_left_m, 0.005);  // the keys moved the grasper tip
+  EXPECT_EQ(sessions[0].record.metrics.path_length_right_m, 0.0);   // the hook was not touched
+}
+
+}  // namespace
+}  // namespace vesica::app
+
+int main(int argc, char** argv) {
+  QSurfaceFormat::setDefaultFormat([] {
+    auto format = QVTKOpenGLNativeWidget::defaultFormat();
+    format.setSamples(0);
+    return format;
+  }());
+  QApplication app(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
