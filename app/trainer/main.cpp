@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   std::string scenario_path = vesica::app::DefaultScenarioPath().string();
   bool headless = false;
   int frames = 3, width = 1280, height = 720, quit_after_ms = 0;
-  std::string screenshot = "vesica.png", grab;
+  std::string screenshot = "vesica.png", grab, grab_window;
   cli.add_option("-s,--scenario", scenario_path, "scenario file (TOML)")->capture_default_str();
   cli.add_flag("--headless", headless, "render off-screen and write a PNG instead of opening a window");
   cli.add_option("--frames", frames, "frames to render in headless mode")->check(CLI::PositiveNumber);
@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   cli.add_option("--height", height, "image height in pixels")->check(CLI::Range(64, 8192));
   cli.add_option("--quit-after-ms", quit_after_ms, "close the window after this many ms (tests, demos)");
   cli.add_option("--grab", grab, "with --quit-after-ms: save a PNG of the laparoscope view before closing");
+  cli.add_option("--grab-window", grab_window, "with --quit-after-ms: save a PNG of the whole window before closing");
   vesica::app::TrainerOptions options;
   if (const char* user = std::getenv("USER"); user != nullptr && *user != '\0') options.trainee_id = user;
   std::string replay, records = "default", recordings_dir = "default";
@@ -107,6 +108,8 @@ int main(int argc, char** argv) {
     QTimer::singleShot(quit_after_ms, &window, [&] {
       if (!grab.empty() && !window.centralWidget()->grab().save(QString::fromStdString(grab)))
         spdlog::error("could not save {}", grab);
+      if (!grab_window.empty() && !window.grab().save(QString::fromStdString(grab_window)))
+        spdlog::error("could not save {}", grab_window);
       app.quit();
     });
   }
