@@ -127,16 +127,20 @@ void SessionRunner::HapticLoop() {
   while (!stop_) {
     const double t = Seconds(Clock::now() - start);
     std::array<Eigen::Vector3d, 2> force;
+    HapticIo* io = options_.haptic_io.get();
+    if (io != nullptr) io->ServoTick();
     for (size_t i = 0; i < 2; ++i) {
-      const Eigen::Vector3d p(tool_tip_[3 * i].load(std::memory_order_relaxed),
-                              tool_tip_[3 * i + 1].load(std::memory_order_relaxed),
-                              tool_tip_[3 * i + 2].load(std::memory_order_relaxed));
+      Eigen::Vector3d p(tool_tip_[3 * i].load(std::memory_order_relaxed),
+                        tool_tip_[3 * i + 1].load(std::memory_order_relaxed),
+                        tool_tip_[3 * i + 2].load(std::memory_order_relaxed));
+      if (io != nullptr) io->ToolPoint(static_cast<int>(i), p);  // the hand's measured point when there is one
       const physics::HapticContactFrame& frame = contact_frames_[i]->Latest();
       if (frame.time_s != last_frame_time[i]) {
         renderers[i].Update(frame, p, t);
         last_frame_time[i] = frame.time_s;
       }
       force[i] = renderers[i].Force(p, t);
+      if (io != nullptr) io->SetForce(static_cast<int>(i), force[i]);
     }
     haptic_stats_.Tick(Clock::now());
     {

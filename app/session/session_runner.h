@@ -16,6 +16,7 @@
 
 #include "app/records/session_metrics.h"
 #include "app/render/render_frame.h"
+#include "app/session/arm_input.h"
 #include "app/session/dissection_session.h"
 #include "app/session/loop_stats.h"
 #include "device/input/input_recorder.h"
@@ -30,6 +31,9 @@ struct RunnerOptions {
   double render_period_s = 1.0 / 60.0;  ///< snapshot at most this often (wall time)
   double end_after_s = -1;              ///< end the session at this session time (replays); < 0: never
   std::string scenario_name;            ///< written into the input recording
+  /// Real haptic devices (arms): the haptic loop reads their tool points and sends them the
+  /// rendered force. Null: the force is computed at the physics tool points and only shown.
+  std::shared_ptr<HapticIo> haptic_io;
 };
 
 /// What the GUI shows besides the picture; copied out under a short lock.
