@@ -7,6 +7,7 @@
 
 #include <QAction>
 #include <QDockWidget>
+#include <QFileDialog>
 #include <QKeyEvent>
 #include <QLabel>
 #include <QMenuBar>
@@ -19,6 +20,8 @@
 #include "app/history/history_window.h"
 #include "app/history/metrics_panel.h"
 #include "app/records/session_store.h"
+#include "app/session/arm_bridge.h"
+#include "app/session/arm_input.h"
 #include "app/session/dissection_setup.h"
 #include "app/trainer/keyboard_control.h"
 #include "device/input/input_recording.h"
@@ -74,37 +77,91 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
   view_menu->addAction("&Diagnostics overlay (F2)", [this] { diagnostics_->setVisible(!diagnostics_->isVisible()); });
   menuBar()->addAction("&History...", [this] { OpenHistory(); });
 
-  // The session: replay or live keyboard input, starting from the view's initial poses.
+  // The session's input: --replay, else what the scenario names (a replay file, haptic arms),
+  // else the keyboard; Session > Input switches while running.
+  model_ = std::move(model);
   poses_ = view_->poses();
-  std::shared_ptr<device::InstrumentInputSource> input;
-  RunnerOptions ro;
-  ro.scenario_name = scenario.name;
-  ro.real_time = options.real_time;
-  if (!options.replay_file.empty()) {
-    auto replay = std::make_shared<device::ReplayInput>(device::ReadInputRecording(options.replay_file));
-    ro.end_after_s = replay->end_time_s();
-    input = replay;
-  } else {
-    device::InputFrame initial;
-    for (size_t i = 0; i < 2 && i < poses_.size(); ++i) initial.instruments[i].pose = poses_[i];
-    live_input_ = std::make_shared<LiveInput>(initial);
-    input = live_input_;
-  }
-  runner_ = std::make_unique<SessionRunner>(std::move(model), DefaultCauteryParams(), input, ro);
-  started_unix_s_ = UnixNow();
-  runner_->Start();
+  std::filesystem::path replay = options.replay_file;
+  for (const InstrumentConfig& c : scenario.instruments)
+    if (replay.empty() && c.input == InputKind::kReplay && !c.replay_file.empty()) replay = c.replay_file;
+  if (!replay.empty())
+    StartSession(InputChoice::kReplay, replay);
+  else
+    StartSession(ArmBridge::ScenarioUsesArms(scenario) ? InputChoice::kArms : InputChoice::kKeyboard, {});
+  QMenu* input_menu = session->addMenu("&Input");
+  input_menu->addAction("&Keyboard", [this] { StartSession(InputChoice::kKeyboard, {}); });
+  input_menu->addAction("&Replay a recording...", [this] {
+    const QString file = QFileDialog::getOpenFileName(this, "Replay a recorded session", QString(),
+                                                      "Vesica recordings (*.csv);;All files (*)");
+    if (!file.isEmpty()) StartSession(InputChoice::kReplay, file.toStdString());
+  });
+  input_menu->addAction("Haptic &arms (scenario's CAN / emulated arms)",
+                        [this] { StartSession(InputChoice::kArms, {}); });
 
   timer_ = new QTimer(this);
   connect(timer_, &QTimer::timeout, this, [this] { Tick(); });
   timer_->start(16);
-  statusBar()->showMessage(
-      QString::fromStdString((live_input_ ? KeyboardHelp() : "replaying " + options.replay_file.string()) +
-                             "  |  P pause, R reset, Enter end, +/- zoom, arrows look around, F2 diagnostics"));
   setToolTip(QString::fromStdString(scenario.description));
   resize(1280, 720);
 }
 
 TrainerWindow::~TrainerWindow() = default;
+
+bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path& replay_file) {
+  std::shared_ptr<device::InstrumentInputSource> input;
+  RunnerOptions ro;
+  ro.scenario_name = scenario_.name;
+  ro.real_time = options_.real_time;
+  std::string what;
+  device::InputFrame initial;
+  for (size_t i = 0; i < 2 && i < poses_.size(); ++i) initial.instruments[i].pose = poses_[i];
+  try {
+    switch (choice) {
+      case InputChoice::kReplay: {
+        auto replay = std::make_shared<device::ReplayInput>(device::ReadInputRecording(replay_file));
+        ro.end_after_s = replay->end_time_s();
+        input = replay;
+        what = "replaying " + replay_file.string();
+        break;
+      }
+      case InputChoice::kArms: {
+        auto bridge = std::make_unique<ArmBridge>(scenario_);
+        ArmBridge* b = bridge.get();
+        auto arms = std::make_shared<ArmInput>(b->devices(), model_->instruments, initial, [b] { b->Tick(); });
+        ro.haptic_io = arms;
+        input = arms;
+        runner_.reset();  // its threads use the old bridge: stop them first
+        arms_ = std::move(bridge);
+        what = "haptic arms";
+        break;
+      }
+      case InputChoice::kKeyboard:
+        break;
+    }
+  } catch (const std::exception& e) {
+    last_error_ = e.what();
+    statusBar()->showMessage(QString::fromStdString(last_error_));
+    if (runner_) return false;  // keep the running session
+    choice = InputChoice::kKeyboard;
+  }
+  if (choice == InputChoice::kKeyboard) {
+    live_input_ = std::make_shared<LiveInput>(initial);
+    input = live_input_;
+    what = KeyboardHelp();
+  } else {
+    live_input_.reset();
+  }
+  runner_ = std::make_unique<SessionRunner>(model_, DefaultCauteryParams(), input, ro);
+  if (choice != InputChoice::kArms) arms_.reset();  // after the runner that used it is gone
+  finished_shown_ = stored_ = false;
+  stored_id_.reset();
+  if (auto* dock = findChild<QDockWidget*>("metrics_dock")) dock->hide();
+  started_unix_s_ = UnixNow();
+  runner_->Start();
+  statusBar()->showMessage(
+      QString::fromStdString(what + "  |  P pause, R reset, Enter end, +/- zoom, arrows look around, F2 diagnostics"));
+  return true;
+}
 
 void TrainerWindow::EndSession() { runner_->End(); }
 
@@ -120,6 +177,7 @@ void TrainerWindow::Tick() {
     text += QString::asprintf("force    grasper %.2f N  hook %.2f N\n", s.haptic_force_N[0].norm(),
                               s.haptic_force_N[1].norm());
     text += QString::asprintf("springs  %d of %d cut", s.metrics.springs_cut, s.metrics.springs_total);
+    if (arms_) text += "\n" + QString::fromStdString(arms_->Describe());
     diagnostics_->setText(text);
     diagnostics_->adjustSize();
   }

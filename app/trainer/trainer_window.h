@@ -22,6 +22,7 @@ class QVTKOpenGLNativeWidget;
 
 namespace vesica::app {
 
+class ArmBridge;
 class MetricsPanel;
 
 struct TrainerOptions {
@@ -39,6 +40,12 @@ class TrainerWindow : public QMainWindow {
   TrainerWindow(const Scenario& scenario, std::unique_ptr<LaparoscopeView> view,
                 std::shared_ptr<const physics::DissectionModel> model, const TrainerOptions& options);
   ~TrainerWindow() override;
+
+  enum class InputChoice { kKeyboard, kReplay, kArms };
+  /// Starts a new session driven by `choice` (a replay needs its file). On failure (a broken
+  /// recording, an arm transport that cannot open) the running session goes on, or the keyboard
+  /// takes over when there is none; last_error() says why. Returns false on failure.
+  bool StartSession(InputChoice choice, const std::filesystem::path& replay_file);
 
   /// Ends the session now (as the End key does).
   void EndSession();
@@ -61,7 +68,9 @@ class TrainerWindow : public QMainWindow {
   Scenario scenario_;
   TrainerOptions options_;
   std::unique_ptr<LaparoscopeView> view_;
-  std::shared_ptr<LiveInput> live_input_;  // null when replaying
+  std::shared_ptr<const physics::DissectionModel> model_;
+  std::shared_ptr<LiveInput> live_input_;  // null unless the keyboard drives
+  std::unique_ptr<ArmBridge> arms_;        // declared before runner_: its threads use the arms
   std::unique_ptr<SessionRunner> runner_;
   QVTKOpenGLNativeWidget* vtk_widget_ = nullptr;
   QLabel* diagnostics_ = nullptr;
