@@ -84,23 +84,27 @@ InstrumentActors::InstrumentActors(const InstrumentConfig& config, const Eigen::
 void InstrumentActors::Update(const InstrumentFrame& frame) {
   const auto& pose = frame.pose;
   const Eigen::Vector3d d = physics::ShaftDirection(reference_direction_, pose);
+  // The physics tip is the working point: the closed jaws' ends, the hook's bend (where it burns).
+  // The drawn shaft stops short of it by the jaw or hook stem length.
   const Eigen::Vector3d tip = remote_centre_ + pose.insertion_m * d;
+  const double head_m = config_.kind == InstrumentKind::kGrasper ? kJawLength_m : kHookStem_m;
+  const Eigen::Vector3d hinge = tip - head_m * d;
   const Eigen::Vector3d outside = remote_centre_ - (config_.shaft_length_m - pose.insertion_m) * d;
   shaft_line_->SetPoint1(outside.data());
-  shaft_line_->SetPoint2(tip.data());
+  shaft_line_->SetPoint2(hinge.data());
   // A frame across the shaft, turned by roll.
   Eigen::Vector3d side = d.cross(Eigen::Vector3d::UnitZ());
   if (side.norm() < 1e-6) side = d.cross(Eigen::Vector3d::UnitX());
   side = Eigen::AngleAxisd(pose.roll_rad, d) * side.normalized();
 
   if (config_.kind == InstrumentKind::kGrasper) {
-    // Two jaws hinged at the tip, opening symmetrically by the jaw angle.
+    // Two jaws hinged one jaw length behind the tip, opening symmetrically by the jaw angle.
     const double half = 0.5 * std::max(pose.jaw_angle_rad, 0.0);
-    const Eigen::Vector3d a = tip + kJawLength_m * (std::cos(half) * d + std::sin(half) * side);
-    const Eigen::Vector3d b = tip + kJawLength_m * (std::cos(half) * d - std::sin(half) * side);
-    tip_a_->SetPoint1(tip.data());
+    const Eigen::Vector3d a = hinge + kJawLength_m * (std::cos(half) * d + std::sin(half) * side);
+    const Eigen::Vector3d b = hinge + kJawLength_m * (std::cos(half) * d - std::sin(half) * side);
+    tip_a_->SetPoint1(hinge.data());
     tip_a_->SetPoint2(a.data());
-    tip_b_->SetPoint1(tip.data());
+    tip_b_->SetPoint1(hinge.data());
     tip_b_->SetPoint2(b.data());
     for (vtkActor* jaw : {jaw_a_.Get(), jaw_b_.Get()}) {
       if (frame.slipping)
@@ -111,9 +115,9 @@ void InstrumentActors::Update(const InstrumentFrame& frame) {
     glow_actor_->VisibilityOff();
   } else {
     // The hook: a stem along the shaft, then a short foot sideways (the L that catches tissue).
-    const Eigen::Vector3d bend = tip + kHookStem_m * d;
+    const Eigen::Vector3d bend = tip;
     const Eigen::Vector3d foot = bend + kHookFoot_m * side;
-    tip_a_->SetPoint1(tip.data());
+    tip_a_->SetPoint1(hinge.data());
     tip_a_->SetPoint2(bend.data());
     tip_b_->SetPoint1(bend.data());
     tip_b_->SetPoint2(foot.data());

@@ -380,16 +380,17 @@ TEST_F(SessionRenderTest, HookBurnsDarkenTheLiverAndSmokeRisesOnlyWhileThePedalI
 }
 
 // Independent of InstrumentActors: where the drawn grasper jaws' points at `along` of their 18 mm
-// length lie for `pose` with jaw angle `jaw_rad` (hinged at the tip, opening across the shaft,
-// turned by roll).
+// length lie for `pose` with jaw angle `jaw_rad` (hinged one jaw length behind the physics tip,
+// so closed jaws end at it; opening across the shaft, turned by roll).
 std::array<Eigen::Vector3d, 2> JawPoints(const physics::InstrumentMount& m, physics::InstrumentPose pose,
                                          double jaw_rad, double along) {
   const Eigen::Vector3d d = physics::ShaftDirection(m.reference_direction_W, pose);
   const Eigen::Vector3d tip = physics::TipPosition(m.p_RemoteCentre_W, m.reference_direction_W, pose);
   const Eigen::Vector3d side = Eigen::AngleAxisd(pose.roll_rad, d) * d.cross(Eigen::Vector3d::UnitZ()).normalized();
   const double half = 0.5 * jaw_rad, length = along * 0.018;
-  return {tip + length * (std::cos(half) * d + std::sin(half) * side),
-          tip + length * (std::cos(half) * d - std::sin(half) * side)};
+  const Eigen::Vector3d hinge = tip - 0.018 * d;
+  return {hinge + length * (std::cos(half) * d + std::sin(half) * side),
+          hinge + length * (std::cos(half) * d - std::sin(half) * side)};
 }
 
 TEST_F(SessionRenderTest, ReplayedRecordingRendersJawsClosingAndTheGallbladderWhereThePhysicsMovedIt) {
