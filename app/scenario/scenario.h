@@ -24,7 +24,10 @@ struct LiverConfig {
 };
 
 enum class FemElement { kLinear, kCorotational };
-enum class FemSolver { kPcg, kCholmod };
+/// kPcg: block-Jacobi PCG, at most 20 iterations (the paper); kCholmod: sparse Cholesky refactored
+/// each step (exact); kRotatedFactorPcg: PCG preconditioned by the rest system's factor turned into
+/// each node's current frame (converged, factorised once).
+enum class FemSolver { kPcg, kCholmod, kRotatedFactorPcg };
 
 /// The gallbladder: a finite-element body on a tetrahedral mesh.
 struct GallbladderConfig {
@@ -32,8 +35,8 @@ struct GallbladderConfig {
   Material material;
   FemElement element = FemElement::kCorotational;
   FemSolver solver = FemSolver::kPcg;
-  double rayleigh_mass = 0.1;       ///< alpha in D = alpha M + beta K (1/s)
-  double rayleigh_stiffness = 0.01; ///< beta (s)
+  double rayleigh_mass = 0.1;        ///< alpha in D = alpha M + beta K (1/s)
+  double rayleigh_stiffness = 0.01;  ///< beta (s)
 };
 
 /// Springs and membranes binding the gallbladder to its bed (gallbladder paper §2.4).
@@ -57,8 +60,8 @@ struct Trocar {
 struct LaparoscopeConfig {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d look_at_m = Eigen::Vector3d::Zero();
-  double view_angle_deg = 70;  ///< vertical field of view
-  double scope_angle_deg = 30; ///< angled-scope tip (0 or 30 degrees in practice)
+  double view_angle_deg = 70;   ///< vertical field of view
+  double scope_angle_deg = 30;  ///< angled-scope tip (0 or 30 degrees in practice)
 };
 
 enum class InstrumentKind { kGrasper, kCauteryHook };

@@ -104,8 +104,9 @@ class TableReader {
     }
     const toml::array* a = n->as_array();
     if (!a || a->size() != 3)
-      Fail(n, key, "must be an array of 3 numbers [x, y, z], got " +
-                       (a ? "an array of " + std::to_string(a->size()) : std::string(TypeName(*n))));
+      Fail(n, key,
+           "must be an array of 3 numbers [x, y, z], got " +
+               (a ? "an array of " + std::to_string(a->size()) : std::string(TypeName(*n))));
     Eigen::Vector3d v;
     for (int i = 0; i < 3; ++i) {
       const toml::node& e = (*a)[static_cast<std::size_t>(i)];
@@ -169,13 +170,20 @@ class TableReader {
   }
   static const char* TypeName(const toml::node& n) {
     switch (n.type()) {
-      case toml::node_type::string: return "a string";
-      case toml::node_type::integer: return "an integer";
-      case toml::node_type::floating_point: return "a number";
-      case toml::node_type::boolean: return "a boolean";
-      case toml::node_type::array: return "an array";
-      case toml::node_type::table: return "a table";
-      default: return "a date/time";
+      case toml::node_type::string:
+        return "a string";
+      case toml::node_type::integer:
+        return "an integer";
+      case toml::node_type::floating_point:
+        return "a number";
+      case toml::node_type::boolean:
+        return "a boolean";
+      case toml::node_type::array:
+        return "an array";
+      case toml::node_type::table:
+        return "a table";
+      default:
+        return "a date/time";
     }
   }
 
@@ -242,11 +250,14 @@ Scenario ParseScenario(std::string_view text, const fs::path& source_name, const
     t.Choice<int>("model", {{"fem", 0}});
     s.gallbladder.volume_mesh = ExistingFile(t, "volume_mesh", base_dir);
     s.gallbladder.material = ReadMaterial(t);
-    s.gallbladder.element = t.Choice<FemElement>(
-        "element", {{"linear", FemElement::kLinear}, {"corotational", FemElement::kCorotational}},
-        FemElement::kCorotational);
-    s.gallbladder.solver =
-        t.Choice<FemSolver>("solver", {{"pcg", FemSolver::kPcg}, {"cholmod", FemSolver::kCholmod}}, FemSolver::kPcg);
+    s.gallbladder.element =
+        t.Choice<FemElement>("element", {{"linear", FemElement::kLinear}, {"corotational", FemElement::kCorotational}},
+                             FemElement::kCorotational);
+    s.gallbladder.solver = t.Choice<FemSolver>("solver",
+                                               {{"pcg", FemSolver::kPcg},
+                                                {"cholmod", FemSolver::kCholmod},
+                                                {"rotated_factor_pcg", FemSolver::kRotatedFactorPcg}},
+                                               FemSolver::kPcg);
     s.gallbladder.rayleigh_mass = t.NonNegative("rayleigh_mass_per_s", 0.1);
     s.gallbladder.rayleigh_stiffness = t.NonNegative("rayleigh_stiffness_s", 0.01);
     t.RejectUnknownKeys();
@@ -295,17 +306,19 @@ Scenario ParseScenario(std::string_view text, const fs::path& source_name, const
     bool found = false;
     for (const auto& tr : s.trocars) found = found || tr.name == in.trocar;
     if (!found) t.Fail(t.table().get("trocar"), "trocar", "no trocar named '" + in.trocar + "'");
-    in.input = t.Choice<InputKind>("input", {{"keyboard", InputKind::kKeyboard},
-                                             {"replay", InputKind::kReplay},
-                                             {"emulated_arm", InputKind::kEmulatedArm},
-                                             {"can_arm", InputKind::kCanArm}},
+    in.input = t.Choice<InputKind>("input",
+                                   {{"keyboard", InputKind::kKeyboard},
+                                    {"replay", InputKind::kReplay},
+                                    {"emulated_arm", InputKind::kEmulatedArm},
+                                    {"can_arm", InputKind::kCanArm}},
                                    InputKind::kKeyboard);
     if (in.input == InputKind::kReplay) in.replay_file = ExistingFile(t, "replay_file", base_dir);
     if (in.input == InputKind::kCanArm || in.input == InputKind::kEmulatedArm) {
       in.can_interface = t.String("can_interface", std::string(in.input == InputKind::kCanArm ? "can0" : "virtual"));
       in.can_node_id = t.Integer("can_node_id");
       if (in.can_node_id < 1 || in.can_node_id > 127)
-        t.Fail(t.table().get("can_node_id"), "can_node_id", "must be in [1, 127], got " + std::to_string(in.can_node_id));
+        t.Fail(t.table().get("can_node_id"), "can_node_id",
+               "must be in [1, 127], got " + std::to_string(in.can_node_id));
     }
     in.shaft_length_m = t.Positive("shaft_length_m", 0.36);
     in.shaft_radius_m = t.Positive("shaft_radius_m", 0.0025);

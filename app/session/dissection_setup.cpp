@@ -43,8 +43,18 @@ physics::DissectionModelInputs MakeDissectionInputs(const Scenario& scenario, co
                  scenario.gallbladder.material.density_kg_per_m3};
   gb.element_model = scenario.gallbladder.element == FemElement::kLinear ? physics::ElementModel::kLinear
                                                                          : physics::ElementModel::kCorotational;
-  gb.solver = scenario.gallbladder.solver == FemSolver::kPcg ? physics::LinearSolverKind::kPcg
-                                                             : physics::LinearSolverKind::kCholmod;
+  switch (scenario.gallbladder.solver) {
+    case FemSolver::kPcg:
+      gb.solver = physics::LinearSolverKind::kPcg;
+      break;
+    case FemSolver::kCholmod:
+      gb.solver = physics::LinearSolverKind::kCholmod;
+      break;
+    case FemSolver::kRotatedFactorPcg:
+      gb.solver = physics::LinearSolverKind::kRotatedFactorPcg;
+      gb.rotated_factor_gauss_seidel = true;  // halves the iterations on the gallbladder
+      break;
+  }
   gb.rayleigh_mass_per_s = scenario.gallbladder.rayleigh_mass;
   gb.rayleigh_stiffness_s = scenario.gallbladder.rayleigh_stiffness;
   in.settings.springs = {scenario.connective_tissue.stiffness_N_per_m, scenario.connective_tissue.damping_Ns_per_m};

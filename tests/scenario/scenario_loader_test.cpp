@@ -141,9 +141,9 @@ TEST_F(ScenarioLoaderTest, WrongTypeIsNamed) {
 
 TEST_F(ScenarioLoaderTest, MissingKeyNamesItsTable) {
   // The line is the table header's, where the key should have been.
-  EXPECT_THAT(ErrorAfter("youngs_modulus_Pa = 2300.0\n", ""),
-              HasSubstr("case.toml:" + std::to_string(LineOf("[gallbladder]")) +
-                        ": gallbladder.youngs_modulus_Pa: missing"));
+  EXPECT_THAT(
+      ErrorAfter("youngs_modulus_Pa = 2300.0\n", ""),
+      HasSubstr("case.toml:" + std::to_string(LineOf("[gallbladder]")) + ": gallbladder.youngs_modulus_Pa: missing"));
 }
 
 TEST_F(ScenarioLoaderTest, UnknownKeyIsATypo) {
@@ -153,9 +153,8 @@ TEST_F(ScenarioLoaderTest, UnknownKeyIsATypo) {
 }
 
 TEST_F(ScenarioLoaderTest, MissingMeshFileIsNamed) {
-  EXPECT_THAT(ErrorAfter("\"gb.vtu\"", "\"nowhere.vtu\""),
-              HasSubstr("case.toml:" + std::to_string(LineOf("gb.vtu")) +
-                        ": gallbladder.volume_mesh: file not found: "));
+  EXPECT_THAT(ErrorAfter("\"gb.vtu\"", "\"nowhere.vtu\""), HasSubstr("case.toml:" + std::to_string(LineOf("gb.vtu")) +
+                                                                     ": gallbladder.volume_mesh: file not found: "));
 }
 
 TEST_F(ScenarioLoaderTest, PositionWithTwoComponentsIsRejected) {
@@ -175,6 +174,15 @@ TEST_F(ScenarioLoaderTest, UnknownChoiceListsTheValidOnes) {
               HasSubstr("case.toml:" + std::to_string(LineOf("input = ")) +
                         ": instruments[1].input: unknown value 'joystick' (expected one of: keyboard, replay, "
                         "emulated_arm, can_arm)"));
+}
+
+TEST_F(ScenarioLoaderTest, EverySolverChoiceParses) {
+  std::string text = kValid;
+  const std::string from = "solver = \"cholmod\"";
+  text.replace(text.find(from), from.size(), "solver = \"rotated_factor_pcg\"");
+  EXPECT_EQ(Parse(text).gallbladder.solver, FemSolver::kRotatedFactorPcg);
+  EXPECT_THAT(ErrorAfter(from, "solver = \"gauss\""),
+              HasSubstr("unknown value 'gauss' (expected one of: pcg, cholmod, rotated_factor_pcg)"));
 }
 
 TEST_F(ScenarioLoaderTest, CanNodeIdOutOfRange) {
