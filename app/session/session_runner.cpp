@@ -82,7 +82,14 @@ void SessionRunner::PhysicsLoop() {
     const double t = static_cast<double>(session_->scene().steps()) * model_->settings.time_step_s;
     if (options_.real_time) {
       const double ahead_s = (t - paced_from_s) - Seconds(Clock::now() - wall_start);
-      if (ahead_s > 0) std::this_thread::sleep_for(std::chrono::duration<double>(ahead_s));
+      if (ahead_s > 0) {
+        std::this_thread::sleep_for(std::chrono::duration<double>(ahead_s));
+      } else if (ahead_s < -0.05) {
+        // Fell behind (a slow step, the machine busy): go on from now rather than race to catch
+        // up, which would play the lost time back fast.
+        wall_start = Clock::now();
+        paced_from_s = t;
+      }
     }
     std::string error;
     try {
