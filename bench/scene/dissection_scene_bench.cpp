@@ -10,10 +10,16 @@
 // Both tools are in contact in every timed step: the grasper holds the gallbladder's bottom face
 // and pulls 2 mm down with a +-0.5 mm, 0.5 s sway; the hook presses 1 mm into the gallbladder's
 // bottom face (hook arg 0) or into the liver's bed beside the gallbladder (hook arg 1).
-//   BM_DissectionStep/<gb nodes>/<solver: 0 PCG (scenario), 1 CHOLMOD>/<hook: 0 gallbladder, 1 liver>
+//   BM_DissectionStep/<gb nodes>/<solver>/<hook: 0 gallbladder, 1 liver>, solver: 0 PCG (20
+//     iterations, block Jacobi; the scenario's default), 1 CHOLMOD (refactorised every step),
+//     2 kRotatedFactorPcg with rotated_factor_gauss_seidel (float rest factor turned per node,
+//     wrapped in block Gauss-Seidel sweeps; converges to pcg_relative_tolerance 1e-8, cap 20)
 //     time = DissectionScene::Step wall time; counters = mean per-stage times of
 //     DissectionStepReport::times (us; "frames_us" = total - sum of stages: haptic frames,
 //     touches, membrane), sizes, constraint rows and the fraction of steps with both tools in contact.
+//     No PCG-iteration counter: DissectionStepReport does not carry the gallbladder's
+//     FemBody::StepReport (solver_iterations, relative_residual), and DissectionScene::gallbladder()
+//     is const; docs/performance/scene.md gives the counts from a diagnostic build.
 //   BM_HapticForceUpdate: one 1 ms device tick: HapticForceRenderer::Update with a new physics
 //     frame every 5th tick (200 Hz physics), Force every tick.
 //   BM_RenderContactForce: RenderContactForce on a unilateral (hook) frame.
@@ -52,7 +58,26 @@ int GallbladderLayers(int nodes) {
   throw std::invalid_argument("scene bench: no gallbladder box with " + std::to_string(nodes) + " nodes");
 }
 
-DissectionModelInputs SceneInputs(int gallbladder_nodes, bool cholmod) {
+// The solver argument of BM_DissectionStep.
+enum SolverArg : int { kSolverPcg = 0, kSolverCholmod = 1, kSolverRotatedFactorGs = 2 };
+
+void SetSolver(FemSettings& gallbladder, int solver) {
+  switch (solver) {
+    case kSolverPcg:
+      gallbladder.solver = LinearSolverKind::kPcg;
+      return;
+    case kSolverCholmod:
+      gallbladder.solver = LinearSolverKind::kCholmod;
+      return;
+    case kSolverRotatedFactorGs:
+      gallbladder.solver = LinearSolverKind::kRotatedFactorPcg;
+      gallbladder.rotated_factor_gauss_seidel = true;
+      return;
+  }
+  throw std::invalid_argument("scene bench: no solver argument " + std::to_string(solver));
+}
+
+DissectionModelInputs SceneInputs(int gallbladder_nodes, int solver) {
   DissectionModelInputs in = testing::SyntheticDissectionInputs();
   // Liver: same box and labels as the synthetic scene, 984 surface nodes.
   in.liver_surface = ExtractBoundary(MakeBoxTetMesh({0.08, 0.04, 0.06}, {17, 9, 13})).surface;
@@ -74,16 +99,16 @@ DissectionModelInputs SceneInputs(int gallbladder_nodes, bool cholmod) {
   in.gallbladder_source = "scene bench gallbladder box";
   in.gallbladder.material = {2300.0, 0.45, 1000.0};
   in.gallbladder.element_model = ElementModel::kCorotational;
-  in.gallbladder.solver = cholmod ? LinearSolverKind::kCholmod : LinearSolverKind::kPcg;
+  SetSolver(in.gallbladder, solver);
   in.gallbladder.rayleigh_mass_per_s = 0.1;
   in.gallbladder.rayleigh_stiffness_s = 0.01;
   return in;
 }
 
-std::shared_ptr<const DissectionModel> CachedModel(int gallbladder_nodes, bool cholmod) {
-  static std::map<std::pair<int, bool>, std::shared_ptr<const DissectionModel>> models;
-  auto& model = models[{gallbladder_nodes, cholmod}];
-  if (!model) model = BuildDissectionModel(SceneInputs(gallbladder_nodes, cholmod));
+std::shared_ptr<const DissectionModel> CachedModel(int gallbladder_nodes, int solver) {
+  static std::map<std::pair<int, int>, std::shared_ptr<const DissectionModel>> models;
+  auto& model = models[{gallbladder_nodes, solver}];
+  if (!model) model = BuildDissectionModel(SceneInputs(gallbladder_nodes, solver));
   return model;
 }
 
@@ -118,11 +143,11 @@ struct SceneRun {
 
 // Grasp the bottom face (as the scene tests' GraspBottom), then over 0.3 s pull 2 mm down while
 // the hook comes up to its contact, then one sway period: both tools in contact from then on.
-SceneRun& WarmScene(int gallbladder_nodes, bool cholmod, bool hook_on_liver) {
-  static std::map<std::tuple<int, bool, bool>, SceneRun> runs;
-  SceneRun& run = runs[{gallbladder_nodes, cholmod, hook_on_liver}];
+SceneRun& WarmScene(int gallbladder_nodes, int solver, bool hook_on_liver) {
+  static std::map<std::tuple<int, int, bool>, SceneRun> runs;
+  SceneRun& run = runs[{gallbladder_nodes, solver, hook_on_liver}];
   if (run.scene) return run;
-  run.scene = std::make_unique<DissectionScene>(CachedModel(gallbladder_nodes, cholmod));
+  run.scene = std::make_unique<DissectionScene>(CachedModel(gallbladder_nodes, solver));
   DissectionScene& scene = *run.scene;
   const DissectionModel& model = scene.model();
   const std::array<InstrumentPose, 2> target = TimedPoses(model, hook_on_liver, 0);
@@ -151,8 +176,9 @@ SceneRun& WarmScene(int gallbladder_nodes, bool cholmod, bool hook_on_liver) {
 
 void BM_DissectionStep(benchmark::State& state) {
   const int nodes = static_cast<int>(state.range(0));
-  const bool cholmod = state.range(1) != 0, hook_on_liver = state.range(2) != 0;
-  SceneRun& run = WarmScene(nodes, cholmod, hook_on_liver);
+  const int solver = static_cast<int>(state.range(1));
+  const bool hook_on_liver = state.range(2) != 0;
+  SceneRun& run = WarmScene(nodes, solver, hook_on_liver);
   DissectionScene& scene = *run.scene;
   const DissectionModel& model = scene.model();
   StageTimes sum;
@@ -197,12 +223,14 @@ void BM_DissectionStep(benchmark::State& state) {
   state.counters["springs"] = static_cast<double>(model.tissue.springs.size());
 }
 BENCHMARK(BM_DissectionStep)
-    ->ArgsProduct({{kGallbladderSmallNodes, kGallbladderLargeNodes}, {0, 1}, {0, 1}})
+    ->ArgsProduct({{kGallbladderSmallNodes, kGallbladderLargeNodes},
+                   {kSolverPcg, kSolverCholmod, kSolverRotatedFactorGs},
+                   {0, 1}})
     ->Unit(benchmark::kMicrosecond);
 
 // Two consecutive hook frames of the 980-node scene (pressing the gallbladder).
 std::array<HapticContactFrame, 2> HookFrames() {
-  SceneRun& run = WarmScene(kGallbladderSmallNodes, false, false);
+  SceneRun& run = WarmScene(kGallbladderSmallNodes, kSolverPcg, false);
   std::array<HapticContactFrame, 2> frames;
   for (HapticContactFrame& f : frames) {
     run.scene->Step(TimedPoses(run.scene->model(), false, run.timed_steps++));
