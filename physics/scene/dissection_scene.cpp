@@ -185,6 +185,8 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
   const StepReport fem = gallbladder_.Step();
   report.gallbladder_accepted = fem.accepted;
   report.rejection_reason = fem.rejection_reason;
+  report.gallbladder_solver_iterations = fem.solver_iterations;
+  report.gallbladder_relative_residual = fem.relative_residual;
   Vertices gb_free = gallbladder_.CurrentPositions();
   lap(report.times.gallbladder_us);
 

@@ -51,7 +51,9 @@ struct StageTimes {
 
 struct DissectionStepReport {
   bool gallbladder_accepted = true;
-  std::string rejection_reason;  ///< why the gallbladder step was rolled back
+  std::string rejection_reason;              ///< why the gallbladder step was rolled back
+  int gallbladder_solver_iterations = 0;     ///< PCG iterations of the gallbladder step (0: direct)
+  double gallbladder_relative_residual = 0;  ///< its PCG residual |b - S du| / |b| (0: direct)
   int constraint_rows = 0;
   ConstraintSolution constraints;
   GraspEvents grasp;

@@ -336,3 +336,24 @@ TEST(DissectionModelTest, BadSettingsAndMissingBedAreNamed) {
 
 }  // namespace
 }  // namespace vesica::physics
+
+namespace vesica::physics {
+namespace {
+
+TEST(DissectionSceneSolverTest, StepReportCarriesTheGallbladderSolversIterationsAndResidual) {
+  DissectionModelInputs in = testing::SyntheticDissectionInputs();
+  in.gallbladder.solver = LinearSolverKind::kPcg;
+  in.settings.gravity_m_per_s2 = Eigen::Vector3d(0, -9.81, 0);  // every step has work to do
+  DissectionScene scene(BuildDissectionModel(in));
+  std::array<InstrumentPose, 2> away{};
+  away[0].insertion_m = away[1].insertion_m = 0.02;
+  const DissectionStepReport r = scene.Step(away);
+  ASSERT_TRUE(r.gallbladder_accepted) << r.rejection_reason;
+  EXPECT_GT(r.gallbladder_solver_iterations, 0);
+  EXPECT_LE(r.gallbladder_solver_iterations, in.gallbladder.pcg_max_iterations);
+  EXPECT_GE(r.gallbladder_relative_residual, 0.0);
+  EXPECT_LT(r.gallbladder_relative_residual, 1.0);
+}
+
+}  // namespace
+}  // namespace vesica::physics
