@@ -113,5 +113,7 @@ int main(int argc, char** argv) {
       app.quit();
     });
   }
-  return app.exec();
+  const int status = app.exec();
+  spdlog::info("loop rates ({}x{} window):\n{}", width, height, window.LoopRatesSummary());
+  return status;
 }

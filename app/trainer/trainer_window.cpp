@@ -165,6 +165,12 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
 
 void TrainerWindow::EndSession() { runner_->End(); }
 
+std::string TrainerWindow::LoopRatesSummary() const {
+  const RunnerStatus s = runner_->Status();
+  return (Rate("physics", s.physics) + "\n" + Rate("haptic", s.haptic) + "\n" + Rate("render", render_stats_.Snapshot()))
+      .toStdString();
+}
+
 void TrainerWindow::Tick() {
   render_stats_.Tick(LoopStats::Clock::now());
   view_->Update(runner_->LatestFrame());
@@ -172,8 +178,7 @@ void TrainerWindow::Tick() {
   const RunnerStatus s = runner_->Status();
   if (diagnostics_->isVisible()) {
     QString text = QString::asprintf("session  %7.2f s%s\n", s.session_time_s, s.paused ? "  (paused)" : "");
-    text += Rate("physics", s.physics) + "\n" + Rate("haptic", s.haptic) + "\n" +
-            Rate("render", render_stats_.Snapshot()) + "\n";
+    text += QString::fromStdString(LoopRatesSummary()) + "\n";
     text += QString::asprintf("force    grasper %.2f N  hook %.2f N\n", s.haptic_force_N[0].norm(),
                               s.haptic_force_N[1].norm());
     text += QString::asprintf("springs  %d of %d cut", s.metrics.springs_cut, s.metrics.springs_total);

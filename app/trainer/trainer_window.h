@@ -54,6 +54,9 @@ class TrainerWindow : public QMainWindow {
   std::optional<std::int64_t> stored_session_id() const { return stored_id_; }
   MetricsPanel* metrics_panel() const { return metrics_panel_; }
   QLabel* diagnostics() const { return diagnostics_; }
+  /// The three loops' rates and jitter so far, one line each (the overlay's text; logged at exit
+  /// so that a run under Xvfb states the software-rendering rate).
+  std::string LoopRatesSummary() const;
   /// The last error shown (records not writable, physics stopped); empty if none.
   const std::string& last_error() const { return last_error_; }
 
