@@ -2,7 +2,10 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <cstdlib>
+#include <cstring>
 
+#include "physics/fem/element_pass_simd.h"
 #include "physics/fem/element_rotation.h"
 
 namespace vesica::physics {
@@ -48,6 +51,14 @@ double LinearForces(const FemModel& m, const Eigen::VectorXd& u, Eigen::VectorXd
 // Below this det F the warm-started iteration is not trusted (inversion): the SVD decides.
 constexpr double kMinDetForIteration = 0.2;
 
+// The scalar pass's rotation rule (the SIMD kernels redo their rare Mueller / SVD lanes with it).
+Eigen::Matrix3d ElementRotation(const Eigen::Matrix3d& f, Eigen::Vector4d* q) {
+  if (q && f.determinant() > kMinDetForIteration) return RotationByQuaternionIteration(f, *q, 30);  // stops early
+  const Eigen::Matrix3d r = RotationFromDeformationGradient(f);
+  if (q) *q = Eigen::Quaterniond(r).coeffs();
+  return r;
+}
+
 // Per tet: f_a = R (V sigma) g_a with H = R^T F - I, eps = sym(H), sigma = lambda tr(eps) I +
 // 2 mu eps, which equals sum_b K_ab (R^T x_b - X_b) of the 12x12 Hooke stiffness (sum_b d_b g_b^T
 // = H), at a fraction of the cost; energy V (mu eps:eps + lambda tr(eps)^2 / 2). The tangent
@@ -74,16 +85,7 @@ double CorotationalForces(const FemModel& m, const Eigen::VectorXd& u, Eigen::Ve
     Eigen::Matrix3d ds;
     ds << x[1] - x[0], x[2] - x[0], x[3] - x[0];
     const Eigen::Matrix3d f = ds * e.rest_shape_inverse;
-    Eigen::Matrix3d r;
-    if (cache && f.determinant() > kMinDetForIteration) {
-      r = RotationByQuaternionIteration(f, (*cache)[t], 30);  // stops early once converged
-    } else {
-      r = RotationFromDeformationGradient(f);
-      if (cache) {
-        const Eigen::Quaterniond q(r);
-        (*cache)[t] = q.coeffs();
-      }
-    }
+    const Eigen::Matrix3d r = ElementRotation(f, cache ? &(*cache)[t] : nullptr);
     Eigen::Matrix3d eps = r.transpose() * f;
     eps = 0.5 * (eps + eps.transpose()).eval();
     eps.diagonal().array() -= 1.0;
@@ -121,12 +123,70 @@ double CorotationalForces(const FemModel& m, const Eigen::VectorXd& u, Eigen::Ve
   return energy;
 }
 
+ElementKernel SupportedKernel() {
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl") &&
+      __builtin_cpu_supports("fma"))
+    return ElementKernel::kAvx512;
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return ElementKernel::kAvx2;
+  return ElementKernel::kScalar;
+}
+
+ElementKernel EnvironmentKernel() {
+  const char* name = std::getenv("VESICA_FEM_ELEMENT_KERNEL");
+  if (!name) return ElementKernel::kAuto;
+  if (!std::strcmp(name, "scalar")) return ElementKernel::kScalar;
+  if (!std::strcmp(name, "avx2")) return ElementKernel::kAvx2;
+  if (!std::strcmp(name, "avx512")) return ElementKernel::kAvx512;
+  return ElementKernel::kAuto;
+}
+
+double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eigen::VectorXd& u,
+                              Eigen::VectorXd* tangent, Eigen::VectorXd* force, std::vector<Eigen::Vector4d>& cache) {
+  if (static_cast<int>(cache.size()) != m.rest_mesh.num_tets()) cache.assign(m.rest_mesh.num_tets(), Eigen::Vector4d(0, 0, 0, 1));
+  force->setZero(u.size());
+  if (tangent) tangent->setZero(m.pattern.structure.nonZeros());
+  ElementPassArgs args;
+  args.rest = m.element_batches.rest.data();
+  args.dofs = m.element_batches.dofs.data();
+  args.num_tets = m.element_batches.num_tets;
+  args.lambda_Pa = m.lame_lambda_Pa;
+  args.mu_Pa = m.lame_mu_Pa;
+  args.displacement = u.data();
+  args.rotation_cache = cache.data()->data();  // Vector4d: 4 packed doubles
+  args.force = force->data();
+  args.tangent = tangent ? tangent->data() : nullptr;
+  args.block_slot = m.pattern.block_slot.data()->data();
+  args.column_stride = m.pattern.column_stride.data();
+  return kernel == ElementKernel::kAvx512 ? ElementPassAvx512(args) : ElementPassAvx2(args);
+}
+
 }  // namespace
+
+void ScalarElementRotation(const double* f, double* q, double* r) {
+  Eigen::Map<Eigen::Vector4d> q_map(q);
+  Eigen::Vector4d q_in = q_map;
+  using RowMajor3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+  Eigen::Map<RowMajor3> r_map(r);
+  r_map = ElementRotation(Eigen::Map<const RowMajor3>(f), &q_in);
+  q_map = q_in;
+}
+
+ElementKernel ResolveElementKernel(ElementKernel requested) {
+  static const ElementKernel supported = SupportedKernel();
+  static const ElementKernel from_environment = EnvironmentKernel();
+  if (requested == ElementKernel::kAuto) requested = from_environment == ElementKernel::kAuto ? supported : from_environment;
+  // The enumerators are ordered narrow to wide.
+  return static_cast<int>(requested) <= static_cast<int>(supported) ? requested : supported;
+}
 
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
                             Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache) {
   if (model.settings.element_model == ElementModel::kLinear)
     return LinearForces(model, u, tangent_values, internal_force_N);
+  const ElementKernel kernel = ResolveElementKernel(model.settings.element_kernel);
+  if (rotation_cache && kernel != ElementKernel::kScalar && model.element_batches.num_tets == model.rest_mesh.num_tets())
+    return SimdCorotationalForces(model, kernel, u, tangent_values, internal_force_N, *rotation_cache);
   return CorotationalForces(model, u, tangent_values, internal_force_N, rotation_cache);
 }
 

@@ -11,11 +11,17 @@
 
 namespace vesica::physics {
 
+/// The kernel a corotational pass with a rotation cache runs for `requested` on this CPU: kAuto
+/// reads VESICA_FEM_ELEMENT_KERNEL once, else takes the widest supported; an unsupported request
+/// falls back to the next narrower kernel. Never kAuto.
+ElementKernel ResolveElementKernel(ElementKernel requested);
+
 /// u: 3n displacement (m). Writes the tangent values in pattern order (nnz, N/m; for a linear
 /// body a copy of the constant K, skipped when tangent_values is null) and the internal force
 /// (3n, N). Returns the elastic energy (J). rotation_cache (optional, per tet quaternion x y z w,
 /// identity on first use) warm-starts the corotational rotation from the last call: far cheaper
-/// than an SVD per element; elements near inversion still go through the SVD.
+/// than an SVD per element; elements near inversion still go through the SVD. With a cache the pass
+/// runs model.settings.element_kernel (ResolveElementKernel).
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u,
                             Eigen::VectorXd* tangent_values, Eigen::VectorXd* internal_force_N,
                             std::vector<Eigen::Vector4d>* rotation_cache = nullptr);

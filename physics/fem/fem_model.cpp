@@ -66,6 +66,8 @@ FemModel BuildFemModel(const TetrahedralMesh& mesh, const FemSettings& settings,
     }
   }
 
+  m.element_batches = BuildElementBatches(mesh, m.elements);
+
   m.free_dofs = Eigen::VectorXd::Ones(3 * n);
   for (const DirichletNode& f : fixed_nodes) {
     if (f.node < 0 || f.node >= n) {

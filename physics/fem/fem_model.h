@@ -7,6 +7,7 @@
 
 #include <Eigen/SparseCore>
 
+#include "physics/fem/element_batches.h"
 #include "physics/fem/fem_settings.h"
 #include "physics/fem/sparse_pattern.h"
 #include "physics/fem/tet_element.h"
@@ -24,6 +25,7 @@ struct FemModel {
   FemSettings settings;
   TetrahedralMesh rest_mesh;          ///< metres
   std::vector<TetElement> elements;   ///< one per tet
+  ElementBatches element_batches;     ///< the same, in SIMD blocks
   double lame_lambda_Pa = 0.0;
   double lame_mu_Pa = 0.0;
   SparsePattern pattern;

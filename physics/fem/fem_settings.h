@@ -31,6 +31,13 @@ enum class LinearSolverKind {
   kRotatedFactorPcg,
 };
 
+/// Instruction set of the corotational element pass (rotations, forces, tangent). The SIMD kernels
+/// give the scalar results to rounding (~1e-13 relative) and are bit-identical run to run on one
+/// machine; kAuto takes the widest the CPU supports unless the environment variable
+/// VESICA_FEM_ELEMENT_KERNEL names one (scalar, avx2, avx512). A kernel the CPU lacks falls back
+/// to the next narrower one. Linear bodies and passes without a rotation cache are always scalar.
+enum class ElementKernel { kAuto, kScalar, kAvx2, kAvx512 };
+
 struct FemSettings {
   std::string body_name = "fem body";  ///< used in every error message
   ElasticMaterial material;
@@ -58,6 +65,7 @@ struct FemSettings {
   /// sweep on the true system (symmetric multiplicative, still SPD): the sweeps remove the local
   /// error where element rotations differ from their nodes' (a grasped, sheared corner).
   bool rotated_factor_gauss_seidel = false;
+  ElementKernel element_kernel = ElementKernel::kAuto;
 
   /// Divergence guard: a step is rejected when its energy exceeds this factor times (energy
   /// before + |work of external forces|) plus energy_floor_J.

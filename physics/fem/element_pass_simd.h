@@ -1,0 +1,32 @@
+#pragma once
+// Internal to elastic_forces.cpp: the corotational element pass vectorised across tets (AVX-512:
+// 8 tets a vector, AVX2: 4), compiled per instruction set (element_pass_avx512.cpp,
+// element_pass_avx2.cpp share element_pass_kernel.inc) and chosen at run time, because the
+// project builds without -march. Same rules and results as the scalar pass (to rounding): the
+// warm-started Newton polar iteration per lane; a lane that needs Mueller's step or the SVD
+// (det F <= 0.2) is redone by ScalarElementRotation from its cached quaternion.
+
+namespace vesica::physics {
+
+struct ElementPassArgs {
+  const double* rest = nullptr;  ///< ElementBatches::rest
+  const int* dofs = nullptr;     ///< ElementBatches::dofs
+  int num_tets = 0;
+  double lambda_Pa = 0.0, mu_Pa = 0.0;
+  const double* displacement = nullptr;  ///< u, 3n
+  double* rotation_cache = nullptr;      ///< 4 per tet (x y z w), read and updated
+  double* force = nullptr;               ///< 3n, zeroed by the caller, accumulated
+  double* tangent = nullptr;             ///< nnz pattern values, zeroed by the caller; null: skip
+  const int* block_slot = nullptr;       ///< SparsePattern::block_slot, 16 per tet
+  const int* column_stride = nullptr;    ///< SparsePattern::column_stride, per node
+};
+
+/// The scalar pass's rotation rule for one element: the warm-started quaternion iteration where
+/// det F > 0.2, else the SVD (q then set from R). F and R row-major 3x3; q x y z w, updated.
+void ScalarElementRotation(const double* f, double* q, double* r);
+
+/// Return the elastic energy (J); accumulate forces and tangent as ComputeElasticForces does.
+double ElementPassAvx512(const ElementPassArgs& args);
+double ElementPassAvx2(const ElementPassArgs& args);
+
+}  // namespace vesica::physics
