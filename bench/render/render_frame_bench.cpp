@@ -1,0 +1,87 @@
+// What one trainer frame costs: the CPU side of LaparoscopeView::Update (organ vertices, normals,
+// burn colours, membrane, smoke, instruments) and the whole frame (Update + draw + glFinish) in an
+// off-screen window. Frames come from the committed dissection recording around 14 s (hook
+// burning, grasper retracting, smoke), cycled so every Update really changes the arrays.
+// Needs an X display: `xvfb-run -a build/release/bench/render/render_benchmark`. Under Xvfb the
+// draw is Mesa's llvmpipe (software); wall time is the figure (llvmpipe draws with threads).
+
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
+
+#include "app/render/laparoscope_view.h"
+#include "app/render/scene_meshes.h"
+#include "app/replay/session_replay.h"
+#include "app/scenario/scenario_loader.h"
+#include "app/session/dissection_session.h"
+#include "app/session/dissection_setup.h"
+#include "device/input/input_recording.h"
+#include "device/input/replay_input.h"
+
+namespace {
+
+using namespace vesica::app;
+
+struct RenderFixture {
+  Scenario scenario;
+  SceneMeshes meshes;
+  std::vector<RenderFrame> frames;
+  std::unique_ptr<LaparoscopeView> view;
+  // One window for the whole run, as the trainer keeps its window (a fresh X window per
+  // benchmark run made Xvfb refuse the connection after a few).
+  vtkNew<vtkRenderWindow> window;
+
+  RenderFixture() : scenario(LoadScenario(DefaultScenarioPath())), meshes(LoadSceneMeshes(scenario)) {
+    auto model = BuildDissectionModelFor(scenario, meshes);
+    vesica::device::InputRecording rec = vesica::device::ReadInputRecording(
+        std::filesystem::path(VESICA_SOURCE_DIR) / "data/recordings/dissection.csv");
+    std::erase_if(rec.frames, [](const vesica::device::InputFrame& f) { return f.time_s > 14.0; });
+    vesica::device::ReplayInput input(rec);
+    DissectionSession session(model, DefaultCauteryParams());
+    RunReplay(session, input, [&](const DissectionSession& s, const SessionStepReport&) {
+      if (s.time_s() >= 13.0 && frames.size() < 16 && s.time_s() >= 13.0 + 0.05 * frames.size())
+        frames.push_back(s.MakeRenderFrame());
+    });
+    view = std::make_unique<LaparoscopeView>(scenario, meshes);
+    window->SetOffScreenRendering(1);
+    window->SetMultiSamples(0);  // as the trainer's window (translucency under Mesa)
+    window->SetAlphaBitPlanes(1);
+    window->AddRenderer(view->renderer());
+  }
+};
+
+RenderFixture& Fixture() {
+  static RenderFixture fixture;
+  return fixture;
+}
+
+void BM_ViewUpdate(benchmark::State& state) {
+  RenderFixture& f = Fixture();
+  std::size_t i = 0;
+  for (auto _ : state) f.view->Update(f.frames[i++ % f.frames.size()]);
+  state.counters["frames_cycled"] = static_cast<double>(f.frames.size());
+}
+BENCHMARK(BM_ViewUpdate)->Unit(benchmark::kMillisecond);
+
+// The trainer's frame: Update, then draw into a window of the trainer's default size.
+void BM_RenderFrame(benchmark::State& state) {
+  RenderFixture& f = Fixture();
+  vtkRenderWindow* window = f.window;
+  window->SetSize(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  window->Render();  // the first frame at a size compiles shaders and allocates: not timed
+  std::size_t i = 0;
+  for (auto _ : state) {
+    f.view->Update(f.frames[i++ % f.frames.size()]);
+    window->Render();
+    window->WaitForCompletion();
+  }
+  state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_RenderFrame)->Args({1280, 720})->Args({640, 360})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
