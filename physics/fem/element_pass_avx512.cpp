@@ -26,6 +26,9 @@ inline vd Gather(const double* base, const int* idx) {
 }
 inline vd Sqrt(vd x) { return _mm512_maskz_sqrt_pd(0xff, x); }
 inline bool Any(vm m) { return _mm512_test_epi64_mask(__m512i(m), __m512i(m)) != 0; }
+inline void AddTriplet(double* p, __m256d v) {
+  _mm256_mask_storeu_pd(p, 0x7, _mm256_add_pd(_mm256_maskz_loadu_pd(0x7, p), v));
+}
 
 #include "physics/fem/element_pass_kernel.inc"
 
