@@ -7,6 +7,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
+#include <vtkTexture.h>
 #include <vtkWindowToImageFilter.h>
 
 #include <optional>
@@ -16,6 +17,7 @@
 #include "app/render/membrane_sheet.h"
 #include "app/render/organ_surface.h"
 #include "app/render/smoke_sprites.h"
+#include "app/render/tissue_texture.h"
 #include "physics/mesh/mesh_topology.h"
 
 namespace vesica::app {
@@ -27,6 +29,7 @@ using Ptr = vtkSmartPointer<T>;
 
 struct LaparoscopeView::Impl {
   Ptr<vtkRenderer> renderer = Ptr<vtkRenderer>::New();
+  vtkSmartPointer<vtkTexture> tissue_texture;
   std::optional<OrganSurface> liver, gallbladder, wall;
   MembraneSheet membrane;
   SmokeSprites smoke;
@@ -39,9 +42,12 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
     : impl_(std::make_unique<Impl>()) {
   auto& r = *impl_->renderer;
   r.SetBackground(0.10, 0.03, 0.03);  // the cavity beyond the light's reach
-  impl_->liver.emplace(meshes.liver, kLiverRgb, 0.12, 1.0);
+  // Serosa detail: one generated texture, a 3 cm period on the liver, 2 cm on the gallbladder.
+  impl_->tissue_texture = MakeTissueTexture(256, 7);
+  impl_->liver.emplace(meshes.liver, kLiverRgb, 0.12, 1.0, impl_->tissue_texture, 0.03);
   // The physics' own boundary numbering, so RenderFrame::gallbladder_vertices maps 1:1.
-  impl_->gallbladder.emplace(physics::ExtractBoundary(meshes.gallbladder).surface, kGallbladderRgb, 0.12, 1.0);
+  impl_->gallbladder.emplace(physics::ExtractBoundary(meshes.gallbladder).surface, kGallbladderRgb, 0.12, 1.0,
+                             impl_->tissue_texture, 0.02);
   r.AddActor(impl_->liver->actor());
   r.AddActor(impl_->gallbladder->actor());
   if (scenario.abdominal_wall.opacity > 0) {

@@ -9,8 +9,10 @@
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
+#include <vtkTexture.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "app/render/burn_colours.h"
@@ -30,7 +32,7 @@ double Mottle(const Eigen::Vector3d& p) {
 }  // namespace
 
 OrganSurface::OrganSurface(const physics::TriangleMesh& rest, const double rgb[3], double mottle_amplitude,
-                           double opacity)
+                           double opacity, vtkTexture* texture, double texture_tile_m)
     : rest_(rest), rgb_{rgb[0], rgb[1], rgb[2]} {
   shade_.resize(rest_.num_vertices());
   for (int v = 0; v < rest_.num_vertices(); ++v)
@@ -58,6 +60,28 @@ OrganSurface::OrganSurface(const physics::TriangleMesh& rest, const double rgb[3
   poly_->SetPolys(cells);
   poly_->GetPointData()->SetNormals(normals);
   poly_->GetPointData()->SetScalars(colours);
+  if (texture != nullptr) {
+    auto tcoords = vtkSmartPointer<vtkFloatArray>::New();
+    tcoords->SetName("TCoords");
+    tcoords->SetNumberOfComponents(2);
+    tcoords->SetNumberOfTuples(n_corners);
+    float* uv = tcoords->GetPointer(0);
+    for (int f = 0; f < rest_.num_triangles(); ++f) {
+      const Eigen::Vector3d a = rest_.vertices.row(rest_.triangles(f, 0)).transpose();
+      const Eigen::Vector3d b = rest_.vertices.row(rest_.triangles(f, 1)).transpose();
+      const Eigen::Vector3d c = rest_.vertices.row(rest_.triangles(f, 2)).transpose();
+      int axis = 0;
+      (b - a).cross(c - a).cwiseAbs().maxCoeff(&axis);
+      const int i = (axis + 1) % 3, j = (axis + 2) % 3;  // the two axes of the projection plane
+      for (int k = 0; k < 3; ++k) {
+        const auto p = rest_.vertices.row(rest_.triangles(f, k));
+        const std::size_t corner = 2 * (3 * static_cast<std::size_t>(f) + k);
+        uv[corner] = static_cast<float>(p(i) / texture_tile_m);
+        uv[corner + 1] = static_cast<float>(p(j) / texture_tile_m);
+      }
+    }
+    poly_->GetPointData()->SetTCoords(tcoords);
+  }
   WriteGeometry(rest_.vertices);
   burn_.assign(rest_.num_triangles(), 1.0f);  // forces the first SetBurn to write every colour
   SetBurn({});
@@ -68,6 +92,7 @@ OrganSurface::OrganSurface(const physics::TriangleMesh& rest, const double rgb[3
   mapper->SetColorModeToDirectScalars();
   actor_ = vtkSmartPointer<vtkActor>::New();
   actor_->SetMapper(mapper);
+  if (texture != nullptr) actor_->SetTexture(texture);
   auto* prop = actor_->GetProperty();
   prop->SetInterpolationToPhong();
   prop->SetAmbient(0.12);
@@ -76,6 +101,9 @@ OrganSurface::OrganSurface(const physics::TriangleMesh& rest, const double rgb[3
   prop->SetSpecularPower(40);
   prop->SetOpacity(opacity);
 }
+
+vtkActor* OrganSurface::actor() const { return actor_; }
+vtkPolyData* OrganSurface::poly_data() const { return poly_; }
 
 void OrganSurface::WriteGeometry(const physics::Vertices& vertices) {
   const physics::Vertices normals = VertexNormals(vertices, rest_.triangles);

@@ -5,6 +5,9 @@
 // The triangles are drawn unshared (3 points per triangle, a "soup"): colour can then change
 // sharply at a triangle's edge (a burn is per triangle) while the mottle and the normals, taken
 // from the shared vertices, stay smooth across edges. The liver has 2k triangles: 6k points.
+// A texture, when given, is box-mapped from the rest shape (each triangle projected along the
+// axis its rest normal is closest to; the soup makes that seam-free per triangle), so the
+// texture sticks to the tissue as it deforms.
 
 #include <vector>
 
@@ -14,6 +17,7 @@
 
 class vtkActor;
 class vtkPolyData;
+class vtkTexture;
 
 namespace vesica::app {
 
@@ -21,8 +25,12 @@ class OrganSurface {
  public:
   /// @param rest  the surface at rest (its numbering is the frame's)
   /// @param rgb   tissue colour 0..1; @param mottle_amplitude relative shade variation
-  OrganSurface(const physics::TriangleMesh& rest, const double rgb[3], double mottle_amplitude, double opacity);
-  vtkActor* actor() const { return actor_; }
+  /// @param texture multiplies the colour (null: none); @param texture_tile_m its period on the tissue
+  OrganSurface(const physics::TriangleMesh& rest, const double rgb[3], double mottle_amplitude, double opacity,
+               vtkTexture* texture = nullptr, double texture_tile_m = 0.03);
+  vtkActor* actor() const;
+  /// What the mapper draws: 3 points per triangle, normals, colours and (if textured) TCoords.
+  vtkPolyData* poly_data() const;
   int num_vertices() const { return rest_.num_vertices(); }
   int num_triangles() const { return rest_.num_triangles(); }
 
