@@ -1,10 +1,14 @@
 #include "physics/fem/cholmod_solver.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCore>
+
+#include "physics/fem/half_factor.h"
 
 namespace vesica::physics {
 
@@ -29,15 +33,19 @@ bool PositiveDefinite(const cholmod_factor& l) {
   return true;
 }
 
-// Supernodal L L^T = P A P^T with L rounded to float. Supernode s holds columns
+// Supernodal L L^T = P A P^T with L rounded to float (or to half, times a power of two that keeps
+// the largest entry near 2^14: binary16 tops out at 65504). Supernode s holds columns
 // [super[s], super[s+1]) as a dense column-major block of pi[s+1] - pi[s] rows (row indices
 // rows[pi[s]...], the first ones its own columns) starting at values[px[s]].
 struct SingleFactor {
   std::vector<int> super, pi, px, rows, perm;
   std::vector<float> values;
+  std::vector<std::uint16_t> half_values;
+  double half_scale = 1.0;  // half_values = half_scale L
+  bool half = false;
   mutable Eigen::VectorXf y, gathered;
 
-  bool CopyFrom(const cholmod_factor& l) {
+  bool CopyFrom(const cholmod_factor& l, bool half_storage) {
     if (!l.is_super || !l.is_ll || l.xtype != CHOLMOD_REAL || l.itype != CHOLMOD_INT) return false;
     const int n = static_cast<int>(l.n), ns = static_cast<int>(l.nsuper);
     const int* super_in = static_cast<const int*>(l.super);
@@ -49,8 +57,20 @@ struct SingleFactor {
     rows.assign(static_cast<const int*>(l.s), static_cast<const int*>(l.s) + pi[ns]);
     perm.assign(static_cast<const int*>(l.Perm), static_cast<const int*>(l.Perm) + n);
     const double* x = static_cast<const double*>(l.x);
-    values.resize(static_cast<size_t>(px[ns]));
-    for (size_t k = 0; k < values.size(); ++k) values[k] = static_cast<float>(x[k]);
+    const size_t entries = static_cast<size_t>(px[ns]);
+    double largest = 0.0;
+    for (size_t k = 0; k < entries; ++k) largest = std::max(largest, std::abs(x[k]));
+    half = half_storage && HalfFactorSupported() && largest > 0.0 && std::isfinite(largest);
+    if (half) {
+      half_scale = std::exp2(std::floor(std::log2(16384.0 / largest)));
+      half_values.resize(entries);
+      ConvertToHalfF16c(x, entries, half_scale, half_values.data());
+      values.clear();
+    } else {
+      values.resize(entries);
+      for (size_t k = 0; k < entries; ++k) values[k] = static_cast<float>(x[k]);
+      half_values.clear();
+    }
     y.resize(n);
     int widest = 0;
     for (int s = 0; s < ns; ++s) widest = std::max(widest, (pi[s + 1] - pi[s]) - (super[s + 1] - super[s]));
@@ -62,6 +82,18 @@ struct SingleFactor {
     using Block = Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>;
     const int n = static_cast<int>(perm.size()), ns = static_cast<int>(super.size()) - 1;
     for (int k = 0; k < n; ++k) y[k] = static_cast<float>(b[perm[k]]);
+    if (half) {
+      // (s L)(s L)^T = s^2 L L^T, so the solve with the stored factor comes out s^2 too small.
+      HalfFactorView view;
+      view.super = super.data(), view.pi = pi.data(), view.px = px.data(), view.rows = rows.data();
+      view.num_supernodes = ns;
+      view.values = half_values.data();
+      HalfFactorSolveF16c(view, y.data(), gathered.data());
+      x.resize(n);
+      const double unscale = half_scale * half_scale;
+      for (int k = 0; k < n; ++k) x[perm[k]] = unscale * static_cast<double>(y[k]);
+      return;
+    }
     for (int s = 0; s < ns; ++s) {  // L z = P b
       const int k0 = super[s], nc = super[s + 1] - k0, nr = pi[s + 1] - pi[s];
       const Block l(values.data() + px[s], nr, nc, Eigen::OuterStride<>(nr));
@@ -104,7 +136,8 @@ struct CholmodSolver::Impl {
 CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
 CholmodSolver::~CholmodSolver() = default;
 
-bool CholmodSolver::Factorize(const SparsePattern& pattern, const Eigen::VectorXd& values, bool keep_single_precision) {
+bool CholmodSolver::Factorize(const SparsePattern& pattern, const Eigen::VectorXd& values, bool keep_single_precision,
+                              bool half_storage) {
   Impl& s = *impl_;
   if (!s.analysed || s.matrix.rows() != pattern.structure.rows() ||
       s.matrix.nonZeros() != pattern.structure.nonZeros()) {
@@ -123,11 +156,13 @@ bool CholmodSolver::Factorize(const SparsePattern& pattern, const Eigen::VectorX
   // Eigen 3.4 reports Success whatever CHOLMOD found.
   const cholmod_factor* l = FactorAccess::Of(s.cholesky);
   s.factorized = s.cholesky.info() == Eigen::Success && l && l->itype == CHOLMOD_INT && PositiveDefinite(*l);
-  s.has_single = s.factorized && keep_single_precision && s.single.CopyFrom(*l);
+  s.has_single = s.factorized && keep_single_precision && s.single.CopyFrom(*l, half_storage);
   return s.factorized;
 }
 
 bool CholmodSolver::factorized() const { return impl_->factorized; }
+
+bool CholmodSolver::half_storage() const { return impl_->has_single && impl_->single.half; }
 
 void CholmodSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const { x = impl_->cholesky.solve(b); }
 

@@ -18,13 +18,19 @@ class CholmodSolver {
   CholmodSolver& operator=(const CholmodSolver&) = delete;
 
   /// Factorises A (values in pattern order). Returns false when A is not positive definite.
-  /// keep_single_precision: also keep L rounded to float for SolveSinglePrecision.
-  bool Factorize(const SparsePattern& pattern, const Eigen::VectorXd& values, bool keep_single_precision = false);
+  /// keep_single_precision: also keep L rounded to float for SolveSinglePrecision; with
+  /// half_storage on a CPU with F16C, rounded to IEEE half instead (times a power of two; relative
+  /// error ~5e-4, a quarter of the double factor's bytes), still solved in float.
+  bool Factorize(const SparsePattern& pattern, const Eigen::VectorXd& values, bool keep_single_precision = false,
+                 bool half_storage = false);
   bool factorized() const;
+  /// The low-precision copy is the half one (half_storage was asked for and the CPU has F16C).
+  bool half_storage() const;
   /// x = A^-1 b with the last successful factorisation.
   void Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
-  /// x ~= A^-1 b with the float copy of L (relative error ~1e-6): the solve is memory bound, and
-  /// float halves the bytes read. Meant for preconditioning. Falls back to Solve when no float
+  /// x ~= A^-1 b with the float copy of L (relative error ~1e-6; ~1e-3 with the half copy): the
+  /// solve is memory bound, and float halves the bytes read (half quarters them). Meant for
+  /// preconditioning. Falls back to Solve when no float
   /// copy was kept or CHOLMOD chose a simplicial factor.
   void SolveSinglePrecision(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
 

@@ -209,7 +209,9 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
     if (!w.rest_factor.factorized() || w.force_refactor) {
       Eigen::VectorXd rest_system;
       SystemValuesFromTangent(m.linear_stiffness_values, rest_system);
-      if (!w.rest_factor.Factorize(m.pattern, rest_system, s.rotated_factor_single_precision)) return false;
+      if (!w.rest_factor.Factorize(m.pattern, rest_system, s.rotated_factor_single_precision,
+                                   s.rotated_factor_half_precision))
+        return false;
       w.force_refactor = false;
     }
     UpdateNodeRotations();

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+
 #include "physics/fem/fem_model.h"
 #include "tests/fem/fem_test_support.h"
 
@@ -49,6 +52,27 @@ TEST(CholmodSolverTest, SinglePrecisionSolveAgreesWithTheDoubleSolveToFloatAccur
     if (cells.x() == 28) {
       EXPECT_GT(error, 0.0);
     }
+  }
+}
+
+// The half copy (binary16 times a power of two, solved in float) to half accuracy, for systems
+// scaled by 1e-8 and 1e8 too: without the power-of-two scale their factors would underflow or
+// overflow binary16 (largest 65504, smallest normal 6e-5).
+TEST(CholmodSolverTest, HalfPrecisionSolveAgreesWithTheDoubleSolveToHalfAccuracy) {
+  const FemModel m = Box({28, 9, 9});
+  for (double scale : {1.0, 1e-8, 1e8}) {
+    CholmodSolver cholesky;
+    ASSERT_TRUE(cholesky.Factorize(m.pattern, scale * SystemValues(m), true, true));
+    if (!cholesky.half_storage()) GTEST_SKIP() << "no F16C on this CPU: the float copy is kept instead";
+    Eigen::VectorXd b(m.num_dofs());
+    for (int i = 0; i < m.num_dofs(); ++i) b[i] = std::sin(0.37 * i) + 0.1 * (i % 3);
+    Eigen::VectorXd exact, half;
+    cholesky.Solve(b, exact);
+    cholesky.SolveSinglePrecision(b, half);
+    const double error = (half - exact).norm() / exact.norm();
+    std::printf("half-precision factor, system scaled by %g: relative error %.2e\n", scale, error);
+    EXPECT_LT(error, 5e-3) << "scale " << scale;
+    EXPECT_GT(error, 1e-5) << "scale " << scale;  // not the float copy
   }
 }
 

@@ -306,29 +306,31 @@ TEST(FemBodyTest, RotatedFactorPcgComplianceMatchesCholmod) {
 }
 
 // A linear body's rest factor is its system matrix: PCG converges in one iteration with the double
-// factor (two or three with the float copy), also after attachment springs change the system (the
-// rest factor is rebuilt with them).
+// factor (two or three with the float copy, at most six with the half one), also after attachment
+// springs change the system (the rest factor is rebuilt with them).
 TEST(FemBodyTest, RotatedFactorPcgSolvesALinearBodyInOneIterationWithAttachments) {
   const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {8, 3, 3});
-  for (bool single : {false, true}) {
+  for (int precision : {0, 1, 2}) {  // double, float, half
+    const bool single = precision > 0;
     FemSettings s;
     s.element_model = ElementModel::kLinear;
     s.solver = LinearSolverKind::kRotatedFactorPcg;
     s.rotated_factor_single_precision = single;
+    s.rotated_factor_half_precision = precision == 2;
     s.pcg_relative_tolerance = 1e-12;
     auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
     FemBody body(model);
     body.SetExternalForces(model->GravityForces({0, 0, -9.81}));
-    const int expected_iterations = single ? 3 : 1;
+    const int expected_iterations = precision == 2 ? 6 : single ? 3 : 1;
     StepReport r = body.Step();
     ASSERT_TRUE(r.accepted);
-    EXPECT_LE(r.solver_iterations, expected_iterations) << "single precision " << single;
+    EXPECT_LE(r.solver_iterations, expected_iterations) << "precision " << precision;
     EXPECT_LE(r.relative_residual, 1e-12);
     body.SetAttachmentStiffness(Eigen::VectorXd::Constant(model->num_dofs(), 50.0),
                                 Eigen::VectorXd::Constant(model->num_dofs(), 0.1));
     r = body.Step();
     ASSERT_TRUE(r.accepted);
-    EXPECT_LE(r.solver_iterations, expected_iterations) << "single precision " << single;
+    EXPECT_LE(r.solver_iterations, expected_iterations) << "precision " << precision;
     EXPECT_LE(r.relative_residual, 1e-12);
   }
 }
