@@ -238,10 +238,10 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
         m.pattern, w.system_values, rhs, du,
         [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
           if (s.rotated_factor_gauss_seidel) {
-            // Forward block Gauss-Seidel sweep, rotated-factor correction, backward sweep.
-            z.setZero(res.size());
-            BlockGaussSeidelSweep(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z, true);
-            UpperBlocksTimes(m.pattern, w.system_values, z, w.smoothed_residual);  // res - S z = -U z
+            // Forward block Gauss-Seidel sweep (with res - S z = -U z from the same pass), rotated-factor
+            // correction, backward sweep.
+            ForwardSweepFromZeroAndUpperTimes(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z,
+                                              w.smoothed_residual);
             w.smoothed_residual = -w.smoothed_residual;
             apply_rotated_factor(w.smoothed_residual, w.correction);
             z += w.correction;

@@ -62,6 +62,36 @@ void BlockGaussSeidelSweep(const SparsePattern& p, const Eigen::VectorXd& values
   }
 }
 
+void ForwardSweepFromZeroAndUpperTimes(const SparsePattern& p, const Eigen::VectorXd& values,
+                                       const std::vector<Eigen::Matrix3d>& inverse_diagonal, const Eigen::VectorXd& b,
+                                       Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  const int nodes = static_cast<int>(inverse_diagonal.size());
+  const int* outer = p.structure.outerIndexPtr();
+  const int* inner = p.structure.innerIndexPtr();
+  const double* v = values.data();
+  x.setZero(3 * nodes);
+  y.setZero(3 * nodes);
+  double* xs = x.data();
+  double* ys = y.data();
+  for (int i = 0; i < nodes; ++i) {
+    const int begin = outer[3 * i], stride = p.column_stride[i];
+    const int diagonal = p.diagonal_slot[3 * i];  // blocks before it: rows of nodes j < i
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+    GatherBlocks(v, inner, xs, begin, diagonal, stride, s0, s1, s2);  // x_j = 0 for j > i
+    const Eigen::Vector3d xi = inverse_diagonal[i] * Eigen::Vector3d(b[3 * i] - s0, b[3 * i + 1] - s1, b[3 * i + 2] - s2);
+    xs[3 * i] = xi[0], xs[3 * i + 1] = xi[1], xs[3 * i + 2] = xi[2];
+    for (int k = begin; k < diagonal; k += 3) {  // block A_ji, rows 3j..3j+2 of column block i
+      double* yj = ys + inner[k];
+      const double* c0 = v + k;
+      const double* c1 = c0 + stride;
+      const double* c2 = c1 + stride;
+      yj[0] += c0[0] * xi[0] + c1[0] * xi[1] + c2[0] * xi[2];
+      yj[1] += c0[1] * xi[0] + c1[1] * xi[1] + c2[1] * xi[2];
+      yj[2] += c0[2] * xi[0] + c1[2] * xi[1] + c2[2] * xi[2];
+    }
+  }
+}
+
 void UpperBlocksTimes(const SparsePattern& p, const Eigen::VectorXd& values, const Eigen::VectorXd& x,
                       Eigen::VectorXd& y) {
   const int nodes = static_cast<int>(p.structure.cols()) / 3;

@@ -44,6 +44,15 @@ void BlockGaussSeidelSweep(const SparsePattern& pattern, const Eigen::VectorXd& 
 void UpperBlocksTimes(const SparsePattern& pattern, const Eigen::VectorXd& values, const Eigen::VectorXd& x,
                       Eigen::VectorXd& y);
 
+/// The forward sweep from x = 0 and y = U x in one pass over the blocks left of the diagonal:
+/// x = (D + L)^-1 b, then b - A x = -y. Row i's blocks left of the diagonal are, by symmetry,
+/// column i's blocks above it, so right after x_i is known they scatter U's contributions
+/// y_j += A_ji x_i (j < i) from cache. Reads half the matrix; a sweep from zero plus
+/// UpperBlocksTimes read one and a half.
+void ForwardSweepFromZeroAndUpperTimes(const SparsePattern& pattern, const Eigen::VectorXd& values,
+                                       const std::vector<Eigen::Matrix3d>& inverse_diagonal, const Eigen::VectorXd& b,
+                                       Eigen::VectorXd& x, Eigen::VectorXd& y);
+
 /// Solves A x = b; x holds the warm start on entry and the solution on exit.
 PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values,
                    const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& preconditioner,

@@ -63,6 +63,11 @@ TEST(PcgSolverTest, GaussSeidelSweepsAreTheBlockTriangularSolves) {
   UpperBlocksTimes(sys.model.pattern, sys.values, x, ux);
   EXPECT_LT((ux - u * x).norm(), 1e-12 * (u * x).norm());
   EXPECT_LT((b - sys.dense * x + ux).norm(), 1e-10 * b.norm());
+  // The fused pass gives both at once.
+  Eigen::VectorXd fused_x, fused_ux;
+  ForwardSweepFromZeroAndUpperTimes(sys.model.pattern, sys.values, jacobi.inverse_blocks(), b, fused_x, fused_ux);
+  EXPECT_LT((fused_x - forward).norm(), 1e-12 * forward.norm());
+  EXPECT_LT((fused_ux - u * forward).norm(), 1e-12 * (u * forward).norm());
   // Backward from x0: x0 + (D + U)^-1 (b - A x0).
   const Eigen::VectorXd x0 = x;
   BlockGaussSeidelSweep(sys.model.pattern, sys.values, jacobi.inverse_blocks(), b, x, false);
