@@ -14,9 +14,10 @@
 namespace vesica::physics {
 namespace {
 
-FemModel BoxModel(const Eigen::Vector3i& cells) {
+FemModel BoxModel(const Eigen::Vector3i& cells, ElementKernel kernel = ElementKernel::kAuto) {
   FemSettings s;
   s.material = {2300.0, 0.45, 1000.0};
+  s.element_kernel = kernel;
   return BuildFemModel(MakeBoxTetMesh({0.08, 0.03, 0.03}, cells), s, {});
 }
 
@@ -51,6 +52,19 @@ void BM_FemElementForces(benchmark::State& state, Eigen::Vector3i cells) {
   ComputeElasticForces(m, u, nullptr, &force, &cache);
   for (auto _ : state) benchmark::DoNotOptimize(ComputeElasticForces(m, u, nullptr, &force, &cache));
   state.counters["nodes"] = m.num_nodes();
+}
+
+// The element pass with a given kernel (scalar reference, AVX2, AVX-512): the rows above run
+// kAuto (the widest this CPU has, unless VESICA_FEM_ELEMENT_KERNEL says otherwise).
+void BM_FemElementPassKernel(benchmark::State& state, Eigen::Vector3i cells, ElementKernel kernel, bool tangent) {
+  const FemModel m = BoxModel(cells, kernel);
+  const Eigen::VectorXd u = Deformation(m);
+  Eigen::VectorXd k, force;
+  std::vector<Eigen::Vector4d> cache;
+  ComputeElasticForces(m, u, tangent ? &k : nullptr, &force, &cache);
+  for (auto _ : state) benchmark::DoNotOptimize(ComputeElasticForces(m, u, tangent ? &k : nullptr, &force, &cache));
+  state.counters["ns_per_tet"] = benchmark::Counter(static_cast<double>(m.rest_mesh.num_tets()) * 1e-9,
+                                                    benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 void BM_FemSpmv(benchmark::State& state, Eigen::Vector3i cells) {
@@ -123,6 +137,17 @@ const bool kRegistered = [] {
         ->Unit(benchmark::kMillisecond)->MinTime(0.2);
     benchmark::RegisterBenchmark((std::string("BM_FemElementForces/corotational/") + name).c_str(), BM_FemElementForces, cells)
         ->Unit(benchmark::kMillisecond)->MinTime(0.2);
+    const std::pair<ElementKernel, const char*> kernels[] = {
+        {ElementKernel::kScalar, "scalar"}, {ElementKernel::kAvx2, "avx2"}, {ElementKernel::kAvx512, "avx512"}};
+    for (const auto& [kernel, kernel_name] : kernels) {
+      if (ResolveElementKernel(kernel) != kernel) continue;  // not on this CPU
+      for (bool tangent : {true, false})
+        benchmark::RegisterBenchmark((std::string(tangent ? "BM_FemElementPass/corotational/" : "BM_FemElementForces/corotational/") +
+                                      name + "/" + kernel_name)
+                                         .c_str(),
+                                     BM_FemElementPassKernel, cells, kernel, tangent)
+            ->Unit(benchmark::kMillisecond)->MinTime(0.2);
+    }
     benchmark::RegisterBenchmark((std::string("BM_FemSpmv/") + name).c_str(), BM_FemSpmv, cells)
         ->Unit(benchmark::kMillisecond)->MinTime(0.2);
     benchmark::RegisterBenchmark((std::string("BM_FemCholmodSolve/") + name).c_str(), BM_FemCholmodSolve, cells)
