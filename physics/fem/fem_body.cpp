@@ -163,7 +163,7 @@ void FemBody::UpdateNodeRotations() {
   std::vector<Eigen::Vector4d> sum(nodes, Eigen::Vector4d::Zero());
   for (int t = 0; t < m.rest_mesh.num_tets(); ++t) {
     const Eigen::Vector4d& q = w.rotations[t];
-    const double volume = m.elements[t].rest_volume_m3;
+    const double volume = m.element_batches.rest_volume_m3(t);
     for (int a = 0; a < 4; ++a) {
       const int n = m.rest_mesh.tets(t, a);
       sum[n] += (q.dot(w.node_quaternions[n]) < 0.0 ? -volume : volume) * q;
