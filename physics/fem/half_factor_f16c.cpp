@@ -54,40 +54,42 @@ inline float Dot(const std::uint16_t* l, const float* y, int n) {
   return s;
 }
 
-// y[0..n) += sum_c a[c] l_c[0..n) for four columns l_c = l + c * stride: y is read and written
-// once for four columns of L.
-inline void Axpy4(const float* a, const std::uint16_t* l, std::ptrdiff_t stride, float* y, int n) {
-  const __m256 a0 = _mm256_set1_ps(a[0]), a1 = _mm256_set1_ps(a[1]), a2 = _mm256_set1_ps(a[2]), a3 = _mm256_set1_ps(a[3]);
-  const std::uint16_t *l0 = l, *l1 = l + stride, *l2 = l + 2 * stride, *l3 = l + 3 * stride;
+// y[0..n) += sum_c a[c] l_c[0..n) for C columns l_c = l + c * stride: y is read and written once
+// for C columns of L.
+template <int C>
+inline void AxpyColumns(const float* a, const std::uint16_t* l, std::ptrdiff_t stride, float* y, int n) {
+  __m256 coefficient[C];
+  for (int c = 0; c < C; ++c) coefficient[c] = _mm256_set1_ps(a[c]);
   int i = 0;
   for (; i + 8 <= n; i += 8) {
-    __m256 v = _mm256_fmadd_ps(a0, Load8(l0 + i), _mm256_loadu_ps(y + i));
-    v = _mm256_fmadd_ps(a1, Load8(l1 + i), v);
-    v = _mm256_fmadd_ps(a2, Load8(l2 + i), v);
-    _mm256_storeu_ps(y + i, _mm256_fmadd_ps(a3, Load8(l3 + i), v));
+    __m256 v = _mm256_loadu_ps(y + i);
+    for (int c = 0; c < C; ++c) v = _mm256_fmadd_ps(coefficient[c], Load8(l + c * stride + i), v);
+    _mm256_storeu_ps(y + i, v);
   }
-  for (; i < n; ++i) y[i] += a[0] * Load1(l0 + i) + a[1] * Load1(l1 + i) + a[2] * Load1(l2 + i) + a[3] * Load1(l3 + i);
+  for (; i < n; ++i)
+    for (int c = 0; c < C; ++c) y[i] += a[c] * Load1(l + c * stride + i);
 }
 
-// out[c] = l_c[0..n) . y[0..n) for four columns l_c = l + c * stride: y is read once.
-inline void Dot4(const std::uint16_t* l, std::ptrdiff_t stride, const float* y, int n, float* out) {
-  __m256 s0 = _mm256_setzero_ps(), s1 = _mm256_setzero_ps(), s2 = _mm256_setzero_ps(), s3 = _mm256_setzero_ps();
-  const std::uint16_t *l0 = l, *l1 = l + stride, *l2 = l + 2 * stride, *l3 = l + 3 * stride;
+// out[c] = l_c[0..n) . y[0..n) for C columns l_c = l + c * stride: y is read once.
+template <int C>
+inline void DotColumns(const std::uint16_t* l, std::ptrdiff_t stride, const float* y, int n, float* out) {
+  __m256 sum[C];
+  for (int c = 0; c < C; ++c) sum[c] = _mm256_setzero_ps();
   int i = 0;
   for (; i + 8 <= n; i += 8) {
     const __m256 v = _mm256_loadu_ps(y + i);
-    s0 = _mm256_fmadd_ps(Load8(l0 + i), v, s0);
-    s1 = _mm256_fmadd_ps(Load8(l1 + i), v, s1);
-    s2 = _mm256_fmadd_ps(Load8(l2 + i), v, s2);
-    s3 = _mm256_fmadd_ps(Load8(l3 + i), v, s3);
+    for (int c = 0; c < C; ++c) sum[c] = _mm256_fmadd_ps(Load8(l + c * stride + i), v, sum[c]);
   }
-  out[0] = Sum(s0), out[1] = Sum(s1), out[2] = Sum(s2), out[3] = Sum(s3);
-  for (; i < n; ++i) {
-    out[0] += Load1(l0 + i) * y[i];
-    out[1] += Load1(l1 + i) * y[i];
-    out[2] += Load1(l2 + i) * y[i];
-    out[3] += Load1(l3 + i) * y[i];
-  }
+  for (int c = 0; c < C; ++c) out[c] = Sum(sum[c]);
+  for (; i < n; ++i)
+    for (int c = 0; c < C; ++c) out[c] += Load1(l + c * stride + i) * y[i];
+}
+
+inline void Axpy4(const float* a, const std::uint16_t* l, std::ptrdiff_t stride, float* y, int n) {
+  AxpyColumns<4>(a, l, stride, y, n);
+}
+inline void Dot4(const std::uint16_t* l, std::ptrdiff_t stride, const float* y, int n, float* out) {
+  DotColumns<4>(l, stride, y, n, out);
 }
 
 }  // namespace
@@ -131,6 +133,7 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
     if (below == 0) continue;
     for (int i = 0; i < below; ++i) gathered[i] = 0.0f;
     int j = 0;
+    for (; j + 8 <= nc; j += 8) AxpyColumns<8>(ys + j, l + static_cast<std::ptrdiff_t>(j) * nr + nc, nr, gathered, below);
     for (; j + 4 <= nc; j += 4) Axpy4(ys + j, l + static_cast<std::ptrdiff_t>(j) * nr + nc, nr, gathered, below);
     for (; j < nc; ++j) Axpy(ys[j], l + static_cast<std::ptrdiff_t>(j) * nr + nc, gathered, below);
     const int* rows = f.rows + f.pi[s] + nc;
@@ -145,6 +148,11 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
       const int* rows = f.rows + f.pi[s] + nc;
       for (int i = 0; i < below; ++i) gathered[i] = y[rows[i]];
       int j = 0;
+      for (; j + 8 <= nc; j += 8) {
+        float dots[8];
+        DotColumns<8>(l + static_cast<std::ptrdiff_t>(j) * nr + nc, nr, gathered, below, dots);
+        for (int c = 0; c < 8; ++c) ys[j + c] -= dots[c];
+      }
       for (; j + 4 <= nc; j += 4) {
         float dots[4];
         Dot4(l + static_cast<std::ptrdiff_t>(j) * nr + nc, nr, gathered, below, dots);
