@@ -172,6 +172,39 @@ void ScalarElementRotation(const double* f, double* q, double* r) {
   q_map = q_in;
 }
 
+void CorotationalTangentTimes(const FemModel& m, const std::vector<Eigen::Vector4d>& cache, const Eigen::VectorXd& x,
+                              Eigen::VectorXd& y) {
+  y.setZero(x.size());
+  const ElementKernel kernel = ResolveElementKernel(m.settings.element_kernel);
+  if (kernel != ElementKernel::kScalar && m.element_batches.num_tets == m.rest_mesh.num_tets()) {
+    ElementPassArgs args;
+    args.rest = m.element_batches.rest.data();
+    args.dofs = m.element_batches.dofs.data();
+    args.num_tets = m.element_batches.num_tets;
+    args.lambda_Pa = m.lame_lambda_Pa;
+    args.mu_Pa = m.lame_mu_Pa;
+    args.displacement = x.data();
+    args.rotation_cache = const_cast<double*>(cache.data()->data());  // read only here
+    args.force = y.data();
+    (kernel == ElementKernel::kAvx512 ? TangentProductAvx512 : TangentProductAvx2)(args);
+    return;
+  }
+  const auto& mesh = m.rest_mesh;
+  const double lambda = m.lame_lambda_Pa, mu = m.lame_mu_Pa;
+  for (int t = 0; t < mesh.num_tets(); ++t) {
+    const TetElement& e = m.elements[t];
+    Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();  // sum_b x_b g_b^T
+    for (int b = 0; b < 4; ++b) grad += x.segment<3>(3 * mesh.tets(t, b)) * e.shape_gradients[b].transpose();
+    const Eigen::Matrix3d r = Eigen::Quaterniond(cache[t]).toRotationMatrix();
+    Eigen::Matrix3d eps = r.transpose() * grad;
+    eps = 0.5 * (eps + eps.transpose()).eval();
+    Eigen::Matrix3d stress = (2.0 * mu * e.rest_volume_m3) * eps;
+    stress.diagonal().array() += lambda * e.rest_volume_m3 * eps.trace();
+    const Eigen::Matrix3d r_stress = r * stress;
+    for (int b = 0; b < 4; ++b) y.segment<3>(3 * mesh.tets(t, b)) += r_stress * e.shape_gradients[b];
+  }
+}
+
 ElementKernel ResolveElementKernel(ElementKernel requested) {
   static const ElementKernel supported = SupportedKernel();
   static const ElementKernel from_environment = EnvironmentKernel();

@@ -26,6 +26,13 @@ double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u,
                             Eigen::VectorXd* tangent_values, Eigen::VectorXd* internal_force_N,
                             std::vector<Eigen::Vector4d>* rotation_cache = nullptr);
 
+/// y = K_t x for a corotational body without assembling K_t (the tangent ComputeElasticForces
+/// assembles, R K R^T per tet, at the rotations it left in rotation_cache), element by element
+/// with model.settings.element_kernel. Costs about one SpMV; saves the assembly when a solver only
+/// needs products. x, y: 3n.
+void CorotationalTangentTimes(const FemModel& model, const std::vector<Eigen::Vector4d>& rotation_cache,
+                              const Eigen::VectorXd& x, Eigen::VectorXd& y);
+
 /// y = A x for a symmetric matrix stored in the pattern (read row-wise, gather form).
 void SymmetricPatternMultiply(const SparsePattern& pattern, const Eigen::VectorXd& values,
                               const Eigen::VectorXd& x, Eigen::VectorXd& y);

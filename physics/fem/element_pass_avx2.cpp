@@ -36,6 +36,7 @@ inline void AddTriplet(double* p, __m256d v) {
 }  // namespace element_pass_avx2
 
 double ElementPassAvx2(const ElementPassArgs& args) { return element_pass_avx2::ElementPass(args); }
+void TangentProductAvx2(const ElementPassArgs& args) { element_pass_avx2::TangentProduct(args); }
 
 }  // namespace vesica::physics
 

@@ -35,6 +35,7 @@ inline void AddTriplet(double* p, __m256d v) {
 }  // namespace element_pass_avx512
 
 double ElementPassAvx512(const ElementPassArgs& args) { return element_pass_avx512::ElementPass(args); }
+void TangentProductAvx512(const ElementPassArgs& args) { element_pass_avx512::TangentProduct(args); }
 
 }  // namespace vesica::physics
 

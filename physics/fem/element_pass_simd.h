@@ -28,5 +28,8 @@ void ScalarElementRotation(const double* f, double* q, double* r);
 /// Return the elastic energy (J); accumulate forces and tangent as ComputeElasticForces does.
 double ElementPassAvx512(const ElementPassArgs& args);
 double ElementPassAvx2(const ElementPassArgs& args);
+/// force += K_t displacement element by element, R from rotation_cache (read only); tangent unused.
+void TangentProductAvx512(const ElementPassArgs& args);
+void TangentProductAvx2(const ElementPassArgs& args);
 
 }  // namespace vesica::physics

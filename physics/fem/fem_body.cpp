@@ -103,9 +103,43 @@ void FemBody::DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   if (s.rayleigh_mass_per_s != 0.0) y += s.rayleigh_mass_per_s * model_->MassTimes(x);
   if (s.rayleigh_stiffness_s != 0.0) {
     Eigen::VectorXd kx;
-    SymmetricPatternMultiply(model_->pattern, work_->tangent_values, x, kx);
+    TangentTimes(x, kx);
     y += s.rayleigh_stiffness_s * kx;
   }
+}
+
+bool FemBody::MatrixFree() const {
+  const FemSettings& s = model_->settings;
+  return s.element_model == ElementModel::kCorotational && s.solver == LinearSolverKind::kRotatedFactorPcg &&
+         !s.rotated_factor_gauss_seidel && s.rotated_factor_matrix_free;
+}
+
+void FemBody::TangentTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  if (MatrixFree())
+    CorotationalTangentTimes(*model_, work_->rotations, x, y);
+  else
+    SymmetricPatternMultiply(model_->pattern, work_->tangent_values, x, y);
+}
+
+void FemBody::SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  // S = stiffness_scale K_t + mass_scale M + springs (k + c_D d), with the rows and columns of fixed
+  // dofs replaced by the identity's (as SystemValuesFromTangent writes them).
+  const FemModel& m = *model_;
+  const FemSettings& s = m.settings;
+  const Workspace& w = *work_;
+  const SystemCoefficients c = IntegratorCoefficients(s);
+  const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;
+  const double stiffness_scale = 1.0 + c.damping * s.rayleigh_stiffness_s;
+  const Eigen::VectorXd free_x = x.cwiseProduct(m.free_dofs);
+  TangentTimes(free_x, y);
+  y *= stiffness_scale;
+  if (m.uses_consistent_mass())
+    y += mass_scale * (PatternMatrix(m.pattern, m.consistent_mass_values) * free_x);
+  else
+    y += mass_scale * m.lumped_mass_kg.cwiseProduct(free_x);
+  if (w.attachment.any)
+    y += (w.attachment.stiffness_N_per_m + c.damping * w.attachment.damping_Ns_per_m).cwiseProduct(free_x);
+  for (int i : m.fixed_dofs) y[i] = x[i];
 }
 
 void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
@@ -113,6 +147,11 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
   const FemSettings& s = m.settings;
   Workspace& w = *work_;
   const bool linear = s.element_model == ElementModel::kLinear;
+  if (MatrixFree()) {  // forces and rotations only: the solver applies K_t element by element
+    w.elastic_energy = ComputeElasticForces(m, u, nullptr, &w.internal_force, &w.rotations);
+    w.system_assembled = true;
+    return;
+  }
   // A linear body's K never changes: copy it once, then only f = K u is needed.
   w.elastic_energy = ComputeElasticForces(m, u, (linear && w.linear_system_built) ? nullptr : &w.tangent_values,
                                           &w.internal_force, &w.rotations);
@@ -234,8 +273,14 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
       du = 2.0 * w.last_increment - w.increment_before_last;
     else
       du = w.last_increment;
+    const MatrixOperator system_times = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+      if (MatrixFree())
+        SystemTimes(x, y);
+      else
+        SymmetricPatternMultiply(m.pattern, w.system_values, x, y);
+    };
     r = SolvePcg(
-        m.pattern, w.system_values, rhs, du,
+        system_times, rhs, du,
         [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
           if (s.rotated_factor_gauss_seidel) {
             // Forward block Gauss-Seidel sweep (with res - S z = -U z from the same pass), rotated-factor
@@ -324,7 +369,7 @@ StepReport FemBody::Step() {
 
   // Energy after the step, elastic part to second order about u (one product with K_t).
   Eigen::VectorXd k_du;
-  SymmetricPatternMultiply(m.pattern, w.tangent_values, du, k_du);
+  TangentTimes(du, k_du);
   const double elastic_after = w.elastic_energy + w.internal_force.dot(du) + 0.5 * du.dot(k_du);
   const double energy_after = 0.5 * v_next.dot(m.MassTimes(v_next)) + elastic_after;
   const double work = std::abs(f_ext.dot(du));

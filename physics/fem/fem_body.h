@@ -72,6 +72,12 @@ class FemBody {
   bool SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, double tolerance, int max_iterations,
                    StepReport* report);
   void DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// The tangent is applied element by element instead of assembled (settings.rotated_factor_matrix_free).
+  bool MatrixFree() const;
+  /// y = K_t x, assembled or element by element.
+  void TangentTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// y = S x (the system matrix SystemValuesFromTangent builds) from products, for MatrixFree().
+  void SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
   std::shared_ptr<const FemModel> model_;
   FemState state_;

@@ -69,6 +69,10 @@ struct FemSettings {
   /// sweep on the true system (symmetric multiplicative, still SPD): the sweeps remove the local
   /// error where element rotations differ from their nodes' (a grasped, sheared corner).
   bool rotated_factor_gauss_seidel = false;
+  /// kRotatedFactorPcg without the Gauss-Seidel sweeps (which need the matrix), corotational: apply
+  /// the tangent element by element (R K R^T per tet, about one SpMV's cost) instead of assembling
+  /// it every step. Same steps to rounding.
+  bool rotated_factor_matrix_free = true;
   ElementKernel element_kernel = ElementKernel::kAuto;
 
   /// Divergence guard: a step is rejected when its energy exceeds this factor times (energy

@@ -108,9 +108,8 @@ void UpperBlocksTimes(const SparsePattern& p, const Eigen::VectorXd& values, con
   }
 }
 
-PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values, const Eigen::VectorXd& b,
-                   Eigen::VectorXd& x, const Preconditioner& preconditioner, double relative_tolerance,
-                   int max_iterations) {
+PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                   const Preconditioner& preconditioner, double relative_tolerance, int max_iterations) {
   PcgResult result;
   const double b_norm = b.norm();
   if (b_norm == 0.0) {
@@ -120,7 +119,7 @@ PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values, 
   }
   if (x.size() != b.size()) x.setZero(b.size());
   Eigen::VectorXd r(b.size()), z, p, q;
-  SymmetricPatternMultiply(pattern, values, x, q);
+  apply(x, q);
   r = b - q;
   const double target = relative_tolerance * b_norm;
   double r_norm = r.norm();
@@ -133,7 +132,7 @@ PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values, 
   p = z;
   double rz = r.dot(z);
   for (int it = 1; it <= max_iterations; ++it) {
-    SymmetricPatternMultiply(pattern, values, p, q);
+    apply(p, q);
     const double pq = p.dot(q);
     if (!(pq > 0.0)) break;  // not positive definite along p (or NaN): stop, caller checks
     const double alpha = rz / pq;
@@ -150,6 +149,13 @@ PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values, 
   result.relative_residual = r_norm / b_norm;
   result.converged = r_norm <= target;
   return result;
+}
+
+PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values, const Eigen::VectorXd& b,
+                   Eigen::VectorXd& x, const Preconditioner& preconditioner, double relative_tolerance,
+                   int max_iterations) {
+  return SolvePcg([&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { SymmetricPatternMultiply(pattern, values, in, out); },
+                  b, x, preconditioner, relative_tolerance, max_iterations);
 }
 
 }  // namespace vesica::physics

@@ -53,6 +53,13 @@ void ForwardSweepFromZeroAndUpperTimes(const SparsePattern& pattern, const Eigen
                                        const std::vector<Eigen::Matrix3d>& inverse_diagonal, const Eigen::VectorXd& b,
                                        Eigen::VectorXd& x, Eigen::VectorXd& y);
 
+/// y = A x.
+using MatrixOperator = std::function<void(const Eigen::VectorXd& x, Eigen::VectorXd& y)>;
+
+/// Solves A x = b with A given as products (matrix-free); x holds the warm start on entry.
+PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                   const Preconditioner& preconditioner, double relative_tolerance, int max_iterations);
+
 /// Solves A x = b; x holds the warm start on entry and the solution on exit.
 PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values,
                    const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& preconditioner,
