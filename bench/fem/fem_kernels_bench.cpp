@@ -79,6 +79,22 @@ void BM_FemSpmv(benchmark::State& state, Eigen::Vector3i cells) {
   state.counters["nnz"] = static_cast<double>(m.pattern.structure.nonZeros());
 }
 
+// The tangent product element by element (CorotationalTangentTimes, kRotatedFactorPcg's
+// matrix-free product), against BM_FemSpmv's assembled one.
+void BM_FemTangentTimes(benchmark::State& state, Eigen::Vector3i cells) {
+  const FemModel m = BoxModel(cells);
+  const Eigen::VectorXd u = Deformation(m);
+  Eigen::VectorXd force, y;
+  std::vector<Eigen::Vector4d> cache;
+  ComputeElasticForces(m, u, nullptr, &force, &cache);
+  for (auto _ : state) {
+    CorotationalTangentTimes(m, cache, u, y);
+    benchmark::DoNotOptimize(y.data());
+  }
+  state.counters["ns_per_tet"] = benchmark::Counter(static_cast<double>(m.rest_mesh.num_tets()) * 1e-9,
+                                                    benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 void BM_FemCholmodSolve(benchmark::State& state, Eigen::Vector3i cells) {
   const FemModel m = BoxModel(cells);
   Eigen::VectorXd s = m.linear_stiffness_values;
@@ -149,6 +165,8 @@ const bool kRegistered = [] {
             ->Unit(benchmark::kMillisecond)->MinTime(0.2);
     }
     benchmark::RegisterBenchmark((std::string("BM_FemSpmv/") + name).c_str(), BM_FemSpmv, cells)
+        ->Unit(benchmark::kMillisecond)->MinTime(0.2);
+    benchmark::RegisterBenchmark((std::string("BM_FemTangentTimes/") + name).c_str(), BM_FemTangentTimes, cells)
         ->Unit(benchmark::kMillisecond)->MinTime(0.2);
     benchmark::RegisterBenchmark((std::string("BM_FemCholmodSolve/") + name).c_str(), BM_FemCholmodSolve, cells)
         ->Unit(benchmark::kMillisecond)->MinTime(0.2);
