@@ -63,7 +63,7 @@ struct SingleFactor {
     half = half_storage && HalfFactorSupported() && largest > 0.0 && std::isfinite(largest);
     if (half) {
       half_scale = std::exp2(std::floor(std::log2(16384.0 / largest)));
-      half_values.resize(entries);
+      half_values.assign(entries + 8, 0);  // 8 zeros past the end: the kernels read whole vectors
       ConvertToHalfF16c(x, entries, half_scale, half_values.data());
       values.clear();
     } else {

@@ -18,7 +18,7 @@ struct HalfFactorView {
   const int* px = nullptr;
   const int* rows = nullptr;
   int num_supernodes = 0;
-  const std::uint16_t* values = nullptr;
+  const std::uint16_t* values = nullptr;  ///< followed by 8 readable entries (zeros)
 };
 
 /// True when this CPU runs the F16C kernels.

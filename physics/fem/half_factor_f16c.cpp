@@ -26,6 +26,9 @@ namespace {
 inline __m256 Load8(const std::uint16_t* p) { return _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))); }
 inline float Load1(const std::uint16_t* p) { return _cvtsh_ss(*p); }
 
+// Lanes [0, m) set, m in 0..8.
+inline __m256i TailMask(int m) { return _mm256_cmpgt_epi32(_mm256_set1_epi32(m), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)); }
+
 inline float Sum(__m256 v) {
   const __m128 s = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
   const __m128 t = _mm_add_ps(s, _mm_movehl_ps(s, s));
@@ -66,8 +69,12 @@ inline void AxpyColumns(const float* a, const std::uint16_t* l, std::ptrdiff_t s
     for (int c = 0; c < C; ++c) v = _mm256_fmadd_ps(coefficient[c], Load8(l + c * stride + i), v);
     _mm256_storeu_ps(y + i, v);
   }
-  for (; i < n; ++i)
-    for (int c = 0; c < C; ++c) y[i] += a[c] * Load1(l + c * stride + i);
+  if (i < n) {  // the last 1-7 rows in one masked vector (the factor is padded for the over-read)
+    const __m256i mask = TailMask(n - i);
+    __m256 v = _mm256_maskload_ps(y + i, mask);
+    for (int c = 0; c < C; ++c) v = _mm256_fmadd_ps(coefficient[c], Load8(l + c * stride + i), v);
+    _mm256_maskstore_ps(y + i, mask, v);
+  }
 }
 
 // out[c] = l_c[0..n) . y[0..n) for C columns l_c = l + c * stride: y is read once.
@@ -80,9 +87,13 @@ inline void DotColumns(const std::uint16_t* l, std::ptrdiff_t stride, const floa
     const __m256 v = _mm256_loadu_ps(y + i);
     for (int c = 0; c < C; ++c) sum[c] = _mm256_fmadd_ps(Load8(l + c * stride + i), v, sum[c]);
   }
+  if (i < n) {  // the last 1-7 rows in one masked vector (the factor is padded for the over-read)
+    const __m256i mask = TailMask(n - i);
+    const __m256 v = _mm256_maskload_ps(y + i, mask);
+    for (int c = 0; c < C; ++c)
+      sum[c] = _mm256_fmadd_ps(_mm256_and_ps(Load8(l + c * stride + i), _mm256_castsi256_ps(mask)), v, sum[c]);
+  }
   for (int c = 0; c < C; ++c) out[c] = Sum(sum[c]);
-  for (; i < n; ++i)
-    for (int c = 0; c < C; ++c) out[c] += Load1(l + c * stride + i) * y[i];
 }
 
 inline void Axpy4(const float* a, const std::uint16_t* l, std::ptrdiff_t stride, float* y, int n) {
