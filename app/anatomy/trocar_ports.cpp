@@ -42,7 +42,7 @@ void WritePortsToml(const PortLayout& ports, const std::filesystem::path& path) 
           "# z cranial; metres. Trocar positions lie on abdominal_wall.vtk.\n\n"
        << "[ports.grasper]  # left hand, right midclavicular line below the costal margin\n"
        << "position_m = " << TomlVector(ports.grasper_m) << "\n\n"
-       << "[ports.cautery]  # right hand, epigastrium\n"
+       << "[ports.cautery]  # right hand, left of the midline below the liver's edge\n"
        << "position_m = " << TomlVector(ports.cautery_m) << "\n\n"
        << "[ports.laparoscope]  # umbilicus, looking at the gallbladder\n"
        << "position_m = " << TomlVector(ports.laparoscope_m) << "\n"

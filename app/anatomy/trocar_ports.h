@@ -12,11 +12,14 @@ namespace vesica::app::anatomy {
 /// Where the ports go, as (x, z) skin positions in the patient frame (metres); each is dropped
 /// onto the wall along -y (from anterior). The surgeon stands on the patient's left: the left
 /// hand's grasper enters at the right midclavicular line below the costal margin, the right
-/// hand's cautery hook in the epigastrium just right of the midline, the laparoscope at the
-/// umbilicus. (The fourth, anterior-axillary port is the assistant's and carries no instrument.)
+/// hand's cautery hook just left of the midline 10 cm above the umbilicus, the laparoscope at
+/// the umbilicus. (The fourth, anterior-axillary port is the assistant's and carries no
+/// instrument.) The hook's port sits below the liver's inferior edge rather than high in the
+/// epigastrium: the gallbladder lies on the liver's visceral surface and our liver is not
+/// retracted, so from a high port every straight path to the liver bed would cross the liver.
 struct PortSkinPositions {
   Eigen::Vector2d grasper_xz_m{-0.085, 0.05};
-  Eigen::Vector2d cautery_xz_m{-0.01, 0.10};
+  Eigen::Vector2d cautery_xz_m{0.01, 0.0};
   Eigen::Vector2d laparoscope_xz_m{0.0, -0.10};
 };
 

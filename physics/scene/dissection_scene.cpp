@@ -358,7 +358,7 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
   const Eigen::MatrixXd system = problem.delassus + Eigen::MatrixXd(problem.soft_compliance.asDiagonal());
   for (size_t i = 0; i < 2; ++i) {
     HapticContactFrame frame;
-    frame.time_s = time_s_ + h;
+    frame.time_s = static_cast<double>(steps_ + 1) * h;
     frame.p_Tool_W = tips_[i];
     frame.f_Tool_W = report.tool_force_N[i];
     frame.unilateral = !(i == 0 && holding);
@@ -410,8 +410,10 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
       }
     }
   }
-  time_s_ += h;
   ++steps_;
+  // k h, not a running sum: a recording's frame times then equal a replay's sample times
+  // exactly, so replaying a closed-loop run reproduces it bit for bit.
+  time_s_ = static_cast<double>(steps_) * h;
   report.times.total_us = Microseconds(Clock::now() - start);
   return report;
 }
