@@ -8,6 +8,7 @@
 #include "physics/fem/cholmod_solver.h"
 #include "physics/fem/elastic_forces.h"
 #include "physics/fem/fem_error.h"
+#include "physics/fem/increment_extrapolation.h"
 #include "physics/fem/pcg_solver.h"
 #include "physics/fem/time_integrator.h"
 
@@ -22,8 +23,9 @@ struct FemBody::Workspace {
   bool acceleration_valid = false;
   bool linear_system_built = false;  // a linear body's S is built once (and after attachment changes)
   AttachmentSprings attachment;
-  Eigen::VectorXd last_increment;          // PCG warm start
-  Eigen::VectorXd increment_before_last;   // kRotatedFactorPcg: linear extrapolation of the warm start
+  Eigen::VectorXd last_increment;           // PCG warm start
+  IncrementExtrapolation extrapolation;     // kRotatedFactorPcg: warm start from the last increments
+  Eigen::VectorXd warm_start_product;       // S times the kRotatedFactorPcg warm start
   std::vector<Eigen::Vector4d> rotations;  // corotational warm start, per tet
   BlockJacobiPreconditioner jacobi;
   CholmodSolver cholmod;
@@ -268,17 +270,26 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
       z.resize(res.size());
       for (int n = 0; n < nodes; ++n) z.segment<3>(3 * n) = w.node_rotations[n] * w.rotated_solution.segment<3>(3 * n);
     };
-    // Warm start: du extrapolated from the last two steps' (the motion is smooth over h).
-    if (w.increment_before_last.size() == w.last_increment.size())
-      du = 2.0 * w.last_increment - w.increment_before_last;
-    else
-      du = w.last_increment;
     const MatrixOperator system_times = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
       if (MatrixFree())
         SystemTimes(x, y);
       else
         SymmetricPatternMultiply(m.pattern, w.system_values, x, y);
     };
+    // Warm start: du extrapolated from the last increments (IncrementExtrapolation picks the
+    // order), then scaled along itself to the minimum of the energy norm of the error,
+    // alpha = du.b / du.S du: never worse than starting from zero in that norm. S du is the
+    // product PCG starts from anyway, so the scale costs two dot products.
+    w.extrapolation.Predict(rhs.size(), du);
+    const Eigen::VectorXd* warm_start_product = nullptr;
+    if (w.extrapolation.history() > 0) {
+      system_times(du, w.warm_start_product);
+      const double curvature = du.dot(w.warm_start_product);
+      const double alpha = curvature > 0.0 ? du.dot(rhs) / curvature : 0.0;
+      du *= alpha;
+      w.warm_start_product *= alpha;
+      warm_start_product = &w.warm_start_product;
+    }
     r = SolvePcg(
         system_times, rhs, du,
         [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
@@ -295,7 +306,7 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
             apply_rotated_factor(res, z);
           }
         },
-        tolerance, max_iterations);
+        tolerance, max_iterations, warm_start_product);
   } else {
     w.jacobi.Compute(m.pattern, w.system_values);
     du = w.last_increment;
@@ -355,7 +366,7 @@ StepReport FemBody::Step() {
     report.accepted = false;
     report.rejection_reason = s.body_name + ": step " + std::to_string(state_.steps) + " rolled back: " + why;
     w.last_increment.setZero();
-    w.increment_before_last.resize(0);
+    w.extrapolation.Clear();
     return report;
   };
 
@@ -384,7 +395,7 @@ StepReport FemBody::Step() {
   state_.acceleration_m_per_s2 = std::move(a_next);
   state_.time_s += s.time_step_s;
   ++state_.steps;
-  if (s.solver == LinearSolverKind::kRotatedFactorPcg) w.increment_before_last.swap(w.last_increment);
+  if (s.solver == LinearSolverKind::kRotatedFactorPcg) w.extrapolation.Push(du);
   w.last_increment = du;
   report.accepted = true;
   report.energy_J = energy_after;
@@ -432,14 +443,14 @@ PointCompliance FemBody::Compliance(const std::vector<TetLocation>& points) {
   for (int j = 0; j < cols; ++j) {
     Eigen::VectorXd x;
     work_->last_increment.setZero();
-    work_->increment_before_last.resize(0);
+    work_->extrapolation.Clear();
     // Accurate solves: the contact solver needs C itself, not a 20-iteration estimate.
     if (!SolveSystem(jt.col(j), x, 1e-12, 10 * n, nullptr))
       throw FemError(m.settings.body_name + ": compliance solve failed (system not positive definite)");
     c.response.col(j) = x;
   }
   work_->last_increment.setZero();
-  work_->increment_before_last.resize(0);
+  work_->extrapolation.Clear();
   c.delassus = jt.transpose() * c.response;
   return c;
 }

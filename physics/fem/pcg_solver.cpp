@@ -109,7 +109,8 @@ void UpperBlocksTimes(const SparsePattern& p, const Eigen::VectorXd& values, con
 }
 
 PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                   const Preconditioner& preconditioner, double relative_tolerance, int max_iterations) {
+                   const Preconditioner& preconditioner, double relative_tolerance, int max_iterations,
+                   const Eigen::VectorXd* initial_product) {
   PcgResult result;
   const double b_norm = b.norm();
   if (b_norm == 0.0) {
@@ -117,10 +118,14 @@ PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen:
     result.converged = true;
     return result;
   }
-  if (x.size() != b.size()) x.setZero(b.size());
   Eigen::VectorXd r(b.size()), z, p, q;
-  apply(x, q);
-  r = b - q;
+  if (x.size() == b.size() && initial_product && initial_product->size() == b.size()) {
+    r = b - *initial_product;
+  } else {
+    if (x.size() != b.size()) x.setZero(b.size());
+    apply(x, q);
+    r = b - q;
+  }
   const double target = relative_tolerance * b_norm;
   double r_norm = r.norm();
   if (r_norm <= target) {

@@ -57,8 +57,10 @@ void ForwardSweepFromZeroAndUpperTimes(const SparsePattern& pattern, const Eigen
 using MatrixOperator = std::function<void(const Eigen::VectorXd& x, Eigen::VectorXd& y)>;
 
 /// Solves A x = b with A given as products (matrix-free); x holds the warm start on entry.
+/// initial_product: A x for that warm start when the caller has it (saves one product), or null.
 PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                   const Preconditioner& preconditioner, double relative_tolerance, int max_iterations);
+                   const Preconditioner& preconditioner, double relative_tolerance, int max_iterations,
+                   const Eigen::VectorXd* initial_product = nullptr);
 
 /// Solves A x = b; x holds the warm start on entry and the solution on exit.
 PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values,

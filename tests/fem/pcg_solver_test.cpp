@@ -88,5 +88,34 @@ TEST(PcgSolverTest, PcgWithBlockJacobiSolvesTheSystem) {
   EXPECT_LT((sys.dense * x - b).norm(), 1e-11 * b.norm());
 }
 
+TEST(PcgSolverTest, GivenInitialProductReplacesTheFirstProduct) {
+  // The warm start's product handed in must give the same iterates as PCG computing it, with one
+  // product fewer.
+  const SmallSystem sys = MakeSystem();
+  BlockJacobiPreconditioner jacobi;
+  jacobi.Compute(sys.model.pattern, sys.values);
+  const Eigen::VectorXd b = TestVector(sys.model.num_dofs());
+  const Eigen::VectorXd start = 0.5 * sys.dense.ldlt().solve(b);
+  int products = 0;
+  const MatrixOperator apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+    ++products;
+    SymmetricPatternMultiply(sys.model.pattern, sys.values, in, out);
+  };
+  const Preconditioner pre = [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { jacobi.Apply(res, z); };
+  Eigen::VectorXd x_plain = start;
+  const PcgResult plain = SolvePcg(apply, b, x_plain, pre, 1e-12, 1000);
+  const int plain_products = products;
+  products = 0;
+  Eigen::VectorXd x_given = start;
+  const Eigen::VectorXd start_product = sys.dense * start;
+  const PcgResult given = SolvePcg(apply, b, x_given, pre, 1e-12, 1000, &start_product);
+  EXPECT_TRUE(plain.converged);
+  EXPECT_TRUE(given.converged);
+  EXPECT_EQ(given.iterations, plain.iterations);
+  EXPECT_EQ(products, plain_products - 1);
+  EXPECT_LT((x_given - x_plain).norm(), 1e-12 * x_plain.norm());
+  EXPECT_LT((sys.dense * x_given - b).norm(), 1e-11 * b.norm());
+}
+
 }  // namespace
 }  // namespace vesica::physics
