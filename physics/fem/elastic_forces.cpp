@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "physics/fem/block_rows_simd.h"
 #include "physics/fem/element_pass_simd.h"
 #include "physics/fem/element_rotation.h"
 
@@ -22,6 +23,17 @@ void SymmetricPatternMultiply(const SparsePattern& p, const Eigen::VectorXd& val
   const double* v = values.data();
   const double* xs = x.data();
   y.resize(3 * nodes);
+  if (BlockRowKernelsUseAvx2()) {
+    BlockRowsView view;
+    view.nodes = nodes;
+    view.outer = outer;
+    view.inner = inner;
+    view.column_stride = p.column_stride.data();
+    view.diagonal_slot = p.diagonal_slot.data();
+    view.values = v;
+    SymmetricPatternMultiplyAvx2(view, xs, y.data());
+    return;
+  }
   for (int b = 0; b < nodes; ++b) {
     const int begin = outer[3 * b], stride = p.column_stride[b];
     double s0 = 0.0, s1 = 0.0, s2 = 0.0;

@@ -4,6 +4,7 @@
 
 #include <Eigen/LU>
 
+#include "physics/fem/block_rows_simd.h"
 #include "physics/fem/elastic_forces.h"
 
 namespace vesica::physics {
@@ -26,6 +27,23 @@ void BlockJacobiPreconditioner::Apply(const Eigen::VectorXd& r, Eigen::VectorXd&
 }
 
 namespace {
+BlockRowsView RowsOf(const SparsePattern& p, const Eigen::VectorXd& values, int nodes) {
+  BlockRowsView view;
+  view.nodes = nodes;
+  view.outer = p.structure.outerIndexPtr();
+  view.inner = p.structure.innerIndexPtr();
+  view.column_stride = p.column_stride.data();
+  view.diagonal_slot = p.diagonal_slot.data();
+  view.values = values.data();
+  return view;
+}
+
+double* SweepScratch(int nodes) {
+  thread_local std::vector<double> scratch;
+  if (static_cast<int>(scratch.size()) < BlockRowSweepScratch(nodes)) scratch.resize(BlockRowSweepScratch(nodes));
+  return scratch.data();
+}
+
 // Adds the products of row i's off-diagonal blocks in slots [begin, end) of its columns with x to
 // (s0, s1, s2) (row i of the symmetric matrix is column i: gather form).
 inline void GatherBlocks(const double* v, const int* inner, const double* x, int begin, int end, int stride,
@@ -46,6 +64,11 @@ void BlockGaussSeidelSweep(const SparsePattern& p, const Eigen::VectorXd& values
                            const std::vector<Eigen::Matrix3d>& inverse_diagonal, const Eigen::VectorXd& b,
                            Eigen::VectorXd& x, bool forward) {
   const int nodes = static_cast<int>(inverse_diagonal.size());
+  if (BlockRowKernelsUseAvx2()) {
+    BlockGaussSeidelSweepAvx2(RowsOf(p, values, nodes), inverse_diagonal.data()->data(), b.data(), x.data(), forward,
+                              SweepScratch(nodes));
+    return;
+  }
   const int* outer = p.structure.outerIndexPtr();
   const int* inner = p.structure.innerIndexPtr();
   const double* v = values.data();
@@ -71,6 +94,11 @@ void ForwardSweepFromZeroAndUpperTimes(const SparsePattern& p, const Eigen::Vect
   const double* v = values.data();
   x.setZero(3 * nodes);
   y.setZero(3 * nodes);
+  if (BlockRowKernelsUseAvx2()) {
+    ForwardSweepFromZeroAndUpperTimesAvx2(RowsOf(p, values, nodes), inverse_diagonal.data()->data(), b.data(),
+                                          x.data(), y.data(), SweepScratch(nodes));
+    return;
+  }
   double* xs = x.data();
   double* ys = y.data();
   for (int i = 0; i < nodes; ++i) {

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 
+#include "physics/fem/block_rows_simd.h"
 #include "physics/fem/elastic_forces.h"
 #include "physics/fem/fem_model.h"
 #include "tests/fem/fem_test_support.h"
@@ -73,6 +74,50 @@ TEST(PcgSolverTest, GaussSeidelSweepsAreTheBlockTriangularSolves) {
   BlockGaussSeidelSweep(sys.model.pattern, sys.values, jacobi.inverse_blocks(), b, x, false);
   const Eigen::VectorXd backward = x0 + du.partialPivLu().solve(b - sys.dense * x0);
   EXPECT_LT((x - backward).norm(), 1e-12 * backward.norm());
+}
+
+// The AVX2 + FMA block-row kernels called directly (the public functions pick them on such a CPU
+// unless VESICA_FEM_ELEMENT_KERNEL=scalar, so with the variable set the test above checks the
+// portable loops and this one still checks the kernels), against the dense products and solves.
+TEST(PcgSolverTest, Avx2BlockRowKernelsAreTheDenseProductAndTriangularSolves) {
+  __builtin_cpu_init();
+  if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) GTEST_SKIP() << "no AVX2 + FMA";
+  const SmallSystem sys = MakeSystem();
+  const SparsePattern& p = sys.model.pattern;
+  const int nodes = sys.model.num_nodes();
+  BlockRowsView view;
+  view.nodes = nodes;
+  view.outer = p.structure.outerIndexPtr();
+  view.inner = p.structure.innerIndexPtr();
+  view.column_stride = p.column_stride.data();
+  view.diagonal_slot = p.diagonal_slot.data();
+  view.values = sys.values.data();
+  BlockJacobiPreconditioner jacobi;
+  jacobi.Compute(p, sys.values);
+  const double* inverse = jacobi.inverse_blocks().data()->data();
+  const Eigen::VectorXd b = TestVector(sys.model.num_dofs());
+  std::vector<double> scratch(BlockRowSweepScratch(nodes) + 1);  // +1: run from an odd address too
+  const Eigen::MatrixXd d = BlockPart(sys.dense, 0), l = BlockPart(sys.dense, -1), u = BlockPart(sys.dense, 1);
+
+  Eigen::VectorXd y(b.size());
+  SymmetricPatternMultiplyAvx2(view, b.data(), y.data());
+  EXPECT_LT((y - sys.dense * b).norm(), 1e-13 * (sys.dense * b).norm());
+
+  for (int offset : {0, 1}) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size()), ux = Eigen::VectorXd::Zero(b.size());
+    ForwardSweepFromZeroAndUpperTimesAvx2(view, inverse, b.data(), x.data(), ux.data(), scratch.data() + offset);
+    const Eigen::VectorXd forward = (d + l).partialPivLu().solve(b);
+    EXPECT_LT((x - forward).norm(), 1e-12 * forward.norm());
+    EXPECT_LT((ux - u * forward).norm(), 1e-12 * (u * forward).norm());
+    Eigen::VectorXd sweep = Eigen::VectorXd::Zero(b.size());
+    BlockGaussSeidelSweepAvx2(view, inverse, b.data(), sweep.data(), true, scratch.data() + offset);
+    EXPECT_LT((sweep - forward).norm(), 1e-12 * forward.norm());
+    const Eigen::VectorXd x0 = 0.5 * forward + TestVector(b.size()) * 1e-3;
+    Eigen::VectorXd back = x0;
+    BlockGaussSeidelSweepAvx2(view, inverse, b.data(), back.data(), false, scratch.data() + offset);
+    const Eigen::VectorXd backward = x0 + (d + u).partialPivLu().solve(b - sys.dense * x0);
+    EXPECT_LT((back - backward).norm(), 1e-12 * backward.norm());
+  }
 }
 
 TEST(PcgSolverTest, PcgWithBlockJacobiSolvesTheSystem) {
