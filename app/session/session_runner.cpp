@@ -39,8 +39,8 @@ void SessionRunner::Start() {
 }
 
 void SessionRunner::SetPaused(bool paused) { paused_ = paused; }
-void SessionRunner::Reset() { reset_ = true; }
-void SessionRunner::End() { end_ = true; }
+int SessionRunner::Reset() { return ++requested_session_; }
+void SessionRunner::End() { ended_session_ = requested_session_.load(); }
 
 const RenderFrame& SessionRunner::LatestFrame() { return frames_.Latest(); }
 
@@ -62,15 +62,22 @@ void SessionRunner::PhysicsLoop() {
   Clock::time_point wall_start = Clock::now(), last_publish = Clock::time_point{};
   double paced_from_s = 0;  // session time at wall_start
   bool finished = false;
+  int session = 0;
   while (!stop_) {
-    if (reset_.exchange(false)) {
+    if (const int wanted = requested_session_.load(); wanted != session) {
       std::lock_guard lock(mutex_);
       session_ = std::make_unique<DissectionSession>(model_, cautery_);
       recorder_ = device::InputRecorder(options_.scenario_name);
       status_ = RunnerStatus{};
+      status_.session = session = wanted;
       finished = false;
       wall_start = Clock::now();
       paced_from_s = 0;
+    }
+    const bool end_asked = ended_session_.load() == session;
+    if (!finished && paused_ && end_asked) {  // End while paused: the session ends where it stands
+      std::lock_guard lock(mutex_);
+      finished = status_.finished = true;
     }
     if (finished || paused_) {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -103,7 +110,7 @@ void SessionRunner::PhysicsLoop() {
         const Eigen::Vector3d tip = session_->scene().tool_tip(i);
         for (int k = 0; k < 3; ++k) tool_tip_[static_cast<size_t>(3 * i + k)].store(tip[k], std::memory_order_relaxed);
       }
-      const bool ended = end_ || (options_.end_after_s >= 0 && session_->time_s() >= options_.end_after_s);
+      const bool ended = end_asked || (options_.end_after_s >= 0 && session_->time_s() >= options_.end_after_s);
       const Clock::time_point now = Clock::now();
       if (ended || Seconds(now - last_publish) >= options_.render_period_s) {
         frames_.Publish(session_->MakeRenderFrame());

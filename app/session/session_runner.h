@@ -41,6 +41,7 @@ struct RunnerStatus {
   double session_time_s = 0;
   bool paused = false;
   bool finished = false;  ///< end_after_s reached, End() called, or an error stopped physics
+  int session = 0;        ///< which session this status is of: 0 at Start, then the number Reset() returned
   std::string error;      ///< why physics stopped, if it did
   SessionMetrics metrics;
   LoopRate physics, haptic;
@@ -58,8 +59,10 @@ class SessionRunner {
   void Start();
   void SetPaused(bool paused);
   /// Starts the session again from the rest state (a fresh DissectionSession, empty recording).
-  void Reset();
-  /// Ends the session: physics stops, the metrics are final.
+  /// Returns the new session's number (RunnerStatus::session once the physics thread took it).
+  int Reset();
+  /// Ends the session (the latest one Reset() asked for): physics stops, the metrics are final;
+  /// also while paused.
   void End();
 
   /// The latest render snapshot (caller's thread only; the render loop).
@@ -87,7 +90,8 @@ class SessionRunner {
   std::array<std::unique_ptr<physics::TripleBuffer<physics::HapticContactFrame>>, 2> contact_frames_;
   std::array<std::atomic<double>, 6> tool_tip_{};  // latest commanded tips for the haptic loop
   LoopStats physics_stats_, haptic_stats_;
-  std::atomic<bool> stop_{false}, paused_{false}, reset_{false}, end_{false};
+  std::atomic<bool> stop_{false}, paused_{false};
+  std::atomic<int> requested_session_{0}, ended_session_{-1};  // numbers as in RunnerStatus::session
   std::thread physics_thread_, haptic_thread_;
 };
 

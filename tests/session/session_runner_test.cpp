@@ -36,6 +36,17 @@ class SessionRunnerTest : public ::testing::Test {
     model_.reset();
     delete head_;
   }
+  // Real-time sessions on a loaded machine: wait for session time instead of sleeping a fixed
+  // wall time (the first steps factor the gallbladder's system).
+  static RunnerStatus WaitSessionTime(SessionRunner& runner, double t_s) {
+    for (int i = 0; i < 6000; ++i) {
+      const RunnerStatus s = runner.Status();
+      if (s.session_time_s >= t_s) return s;
+      std::this_thread::sleep_for(10ms);
+    }
+    ADD_FAILURE() << "session time did not reach " << t_s << " s in 60 s";
+    return runner.Status();
+  }
   static RunnerStatus WaitFinished(SessionRunner& runner) {
     for (int i = 0; i < 6000; ++i) {
       const RunnerStatus s = runner.Status();
@@ -94,23 +105,62 @@ TEST_F(SessionRunnerTest, PauseHoldsTimeResetStartsOverEndFinishes) {
   RunnerOptions options;  // real time
   SessionRunner runner(model_, DefaultCauteryParams(), input, options);
   runner.Start();
-  std::this_thread::sleep_for(300ms);
+  WaitSessionTime(runner, 0.3);
   runner.SetPaused(true);
-  std::this_thread::sleep_for(50ms);  // let a step in flight finish
+  std::this_thread::sleep_for(200ms);  // let a step in flight finish
   const double paused_at = runner.Status().session_time_s;
-  EXPECT_GT(paused_at, 0.0);
+  EXPECT_GE(paused_at, 0.3);
   std::this_thread::sleep_for(200ms);
   EXPECT_EQ(runner.Status().session_time_s, paused_at);
   EXPECT_TRUE(runner.Status().paused);
   runner.SetPaused(false);
-  runner.Reset();
-  std::this_thread::sleep_for(50ms);
-  EXPECT_LT(runner.Status().session_time_s, paused_at + 0.05);
+  const int second = runner.Reset();
+  RunnerStatus after = runner.Status();
+  for (int i = 0; i < 6000 && after.session != second; ++i) {
+    std::this_thread::sleep_for(10ms);
+    after = runner.Status();
+  }
+  EXPECT_EQ(after.session, second);
+  EXPECT_LT(after.session_time_s, paused_at);  // started over
   runner.End();
   const RunnerStatus s = WaitFinished(runner);
   EXPECT_TRUE(s.finished);
   EXPECT_TRUE(s.error.empty());
   EXPECT_GT(s.physics.rate_hz, 0.0);
+}
+
+TEST_F(SessionRunnerTest, EndWhilePausedFinishesWhereItStandsAndResetAfterEndStartsAgain) {
+  auto input = std::make_shared<LiveInput>();
+  RunnerOptions options;  // real time
+  SessionRunner runner(model_, DefaultCauteryParams(), input, options);
+  runner.Start();
+  WaitSessionTime(runner, 0.1);
+  runner.SetPaused(true);
+  const double paused_at = runner.Status().session_time_s;
+  runner.End();  // still paused: the session must end now, not when resumed
+  const RunnerStatus ended = WaitFinished(runner);
+  EXPECT_TRUE(ended.finished);
+  EXPECT_TRUE(ended.paused);
+  // At most the step that was in flight when the pause came, and nothing after the end.
+  EXPECT_LE(ended.session_time_s, paused_at + 1.5 * model_->settings.time_step_s);
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(runner.Status().session_time_s, ended.session_time_s);
+
+  // Reset after the end: a new session that runs on (the old End does not end it at once).
+  runner.SetPaused(false);
+  const int second = runner.Reset();
+  RunnerStatus again = runner.Status();
+  for (int i = 0; i < 1000 && !(again.session == second && again.session_time_s > 0.05); ++i) {
+    std::this_thread::sleep_for(10ms);
+    again = runner.Status();
+  }
+  EXPECT_EQ(again.session, second);
+  EXPECT_GT(again.session_time_s, 0.05);
+  EXPECT_FALSE(again.finished);
+  runner.End();
+  const RunnerStatus second_end = WaitFinished(runner);
+  EXPECT_TRUE(second_end.finished);
+  EXPECT_EQ(second_end.session, second);
 }
 
 TEST_F(SessionRunnerTest, BadInputStopsPhysicsWithTheReason) {
