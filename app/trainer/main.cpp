@@ -13,14 +13,13 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
-#include <memory>
 
 #include "app/records/default_location.h"
 #include "app/records/session_store.h"
 #include "app/render/laparoscope_view.h"
+#include "app/render/scene_meshes.h"
 #include "app/scenario/scenario_loader.h"
-#include "app/session/dissection_setup.h"
-#include "app/trainer/trainer_window.h"
+#include "app/trainer/trainer_app.h"
 
 int main(int argc, char** argv) {
   CLI::App cli{"Vesica laparoscopic cholecystectomy trainer"};
@@ -53,25 +52,19 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   CLI11_PARSE(cli, argc, argv);
 
-  std::unique_ptr<vesica::app::LaparoscopeView> view;
-  vesica::app::Scenario scenario;
-  try {
-    scenario = vesica::app::LoadScenario(scenario_path);
-    const auto meshes = vesica::app::LoadSceneMeshes(scenario);
-    spdlog::info("scenario '{}': liver {} nodes, gallbladder {} nodes / {} tets", scenario.name,
-                 meshes.liver.num_vertices(), meshes.gallbladder.num_vertices(), meshes.gallbladder.num_tets());
-    view = std::make_unique<vesica::app::LaparoscopeView>(scenario, meshes);
-    if (headless) {
-      vesica::app::RenderToPng(*view, width, height, frames, screenshot);
+  if (headless) {
+    try {
+      const auto scenario = vesica::app::LoadScenario(scenario_path);
+      vesica::app::LaparoscopeView view(scenario, vesica::app::LoadSceneMeshes(scenario));
+      vesica::app::RenderToPng(view, width, height, frames, screenshot);
       spdlog::info("wrote {} ({}x{}, {} frames)", screenshot, width, height, frames);
       return 0;
+    } catch (const std::exception& e) {
+      spdlog::error("{}", e.what());
+      return 2;
     }
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return 2;
   }
 
-  std::shared_ptr<const vesica::physics::DissectionModel> model;
   try {
     if (records == "default") records = vesica::app::DefaultSessionStoreLocation();
     if (records != "none") options.records_location = records;
@@ -83,17 +76,12 @@ int main(int argc, char** argv) {
     } else if (recordings_dir != "none") {
       options.recordings_dir = recordings_dir;
     }
-    options.replay_file = replay;
-    options.real_time = !fast;
-    const auto meshes = vesica::app::LoadSceneMeshes(scenario);
-    spdlog::info("building the dissection scene (the liver's Green's functions are cached after the first run)");
-    model = vesica::app::BuildDissectionModelFor(scenario, meshes);
-    spdlog::info("{} connective-tissue springs; records: {}", model->tissue.springs.size(),
-                 options.records_location.empty() ? "not stored" : options.records_location);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 2;
   }
+  options.replay_file = replay;
+  options.real_time = !fast;
 
   QSurfaceFormat::setDefaultFormat([] {
     auto format = QVTKOpenGLNativeWidget::defaultFormat();
@@ -101,11 +89,11 @@ int main(int argc, char** argv) {
     return format;
   }());
   QApplication app(argc, argv);
-  vesica::app::TrainerWindow window(scenario, std::move(view), model, options);
-  window.resize(width, height);
-  window.show();
+  vesica::app::TrainerApp trainer(options, QSize(width, height));
+  if (!trainer.Open(scenario_path)) return 2;  // the error is logged
   if (quit_after_ms > 0) {
-    QTimer::singleShot(quit_after_ms, &window, [&] {
+    QTimer::singleShot(quit_after_ms, &app, [&] {
+      vesica::app::TrainerWindow& window = *trainer.window();
       if (!grab.empty() && !window.centralWidget()->grab().save(QString::fromStdString(grab)))
         spdlog::error("could not save {}", grab);
       if (!grab_window.empty() && !window.grab().save(QString::fromStdString(grab_window)))
@@ -114,6 +102,6 @@ int main(int argc, char** argv) {
     });
   }
   const int status = app.exec();
-  spdlog::info("loop rates ({}x{} window):\n{}", width, height, window.LoopRatesSummary());
+  spdlog::info("loop rates ({}x{} window):\n{}", width, height, trainer.window()->LoopRatesSummary());
   return status;
 }

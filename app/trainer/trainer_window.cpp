@@ -16,10 +16,12 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <thread>
 
 #include "app/history/history_window.h"
 #include "app/history/metrics_panel.h"
 #include "app/records/session_store.h"
+#include "app/scenario/scenario_loader.h"
 #include "app/session/arm_bridge.h"
 #include "app/session/arm_input.h"
 #include "app/session/dissection_setup.h"
@@ -68,11 +70,16 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
 
   QMenu* session = menuBar()->addMenu("&Session");
   session->addAction("&Pause / resume (P)", [this] { runner_->SetPaused(!runner_->Status().paused); });
-  session->addAction("&Reset (R)", [this] {
-    runner_->Reset();
-    started_unix_s_ = UnixNow();
-  });
+  session->addAction("&Reset (R)", [this] { ResetSession(); });
   session->addAction("&End session (Enter)", [this] { EndSession(); });
+  open_scenario_action_ = session->addAction("Open &scenario...", [this] {
+    const QString file = QFileDialog::getOpenFileName(
+        this, "Open a scenario", QString::fromStdString(DefaultScenarioPath().parent_path().string()),
+        "Vesica scenarios (*.toml);;All files (*)");
+    if (!file.isEmpty() && open_scenario_) open_scenario_(file.toStdString());
+  });
+  open_scenario_action_->setObjectName("open_scenario");
+  open_scenario_action_->setEnabled(false);
   QMenu* view_menu = menuBar()->addMenu("&View");
   view_menu->addAction("&Diagnostics overlay (F2)", [this] { diagnostics_->setVisible(!diagnostics_->isVisible()); });
   menuBar()->addAction("&History...", [this] { OpenHistory(); });
@@ -139,8 +146,7 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
         break;
     }
   } catch (const std::exception& e) {
-    last_error_ = e.what();
-    statusBar()->showMessage(QString::fromStdString(last_error_));
+    ShowError(e.what());
     if (runner_) return false;  // keep the running session
     choice = InputChoice::kKeyboard;
   }
@@ -152,6 +158,7 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
     live_input_.reset();
   }
   runner_ = std::make_unique<SessionRunner>(model_, DefaultCauteryParams(), input, ro);
+  session_number_ = 0;
   if (choice != InputChoice::kArms) arms_.reset();  // after the runner that used it is gone
   finished_shown_ = stored_ = false;
   stored_id_.reset();
@@ -165,9 +172,41 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
 
 void TrainerWindow::EndSession() { runner_->End(); }
 
+void TrainerWindow::EndAndStoreSession() {
+  if (finished_shown_) return;
+  runner_->End();
+  // The physics thread ends the session within one step (5 ms of work); a stuck step must not
+  // hang the window, so the wait is bounded and the session is stored as it stands.
+  RunnerStatus s = runner_->Status();
+  for (int i = 0; i < 1000 && !(s.finished && s.session == session_number_); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    s = runner_->Status();
+  }
+  OnFinished(s);
+}
+
+void TrainerWindow::ResetSession() {
+  session_number_ = runner_->Reset();
+  started_unix_s_ = UnixNow();
+  finished_shown_ = stored_ = false;
+  stored_id_.reset();
+  if (auto* dock = findChild<QDockWidget*>("metrics_dock")) dock->hide();
+}
+
+void TrainerWindow::SetScenarioOpener(std::function<void(const std::filesystem::path&)> open) {
+  open_scenario_ = std::move(open);
+  open_scenario_action_->setEnabled(static_cast<bool>(open_scenario_));
+}
+
+void TrainerWindow::ShowError(const std::string& message) {
+  last_error_ = message;
+  statusBar()->showMessage(QString::fromStdString(message));
+}
+
 std::string TrainerWindow::LoopRatesSummary() const {
   const RunnerStatus s = runner_->Status();
-  return (Rate("physics", s.physics) + "\n" + Rate("haptic", s.haptic) + "\n" + Rate("render", render_stats_.Snapshot()))
+  return (Rate("physics", s.physics) + "\n" + Rate("haptic", s.haptic) + "\n" +
+          Rate("render", render_stats_.Snapshot()))
       .toStdString();
 }
 
@@ -186,7 +225,8 @@ void TrainerWindow::Tick() {
     diagnostics_->setText(text);
     diagnostics_->adjustSize();
   }
-  if (s.finished && !finished_shown_) OnFinished(s);
+  // A finished status of the session before a Reset() is not this one's.
+  if (s.finished && !finished_shown_ && s.session == session_number_) OnFinished(s);
 }
 
 void TrainerWindow::OnFinished(const RunnerStatus& status) {
@@ -222,8 +262,7 @@ void TrainerWindow::OnFinished(const RunnerStatus& status) {
         std::string("Session finished") + (stored_ ? " and saved" : "") +
         (record.input_recording_path.empty() ? "" : "; input in " + record.input_recording_path)));
   } catch (const std::exception& e) {
-    last_error_ = std::string("could not save the session: ") + e.what();
-    statusBar()->showMessage(QString::fromStdString(last_error_));
+    ShowError(std::string("could not save the session: ") + e.what());
   }
 }
 
@@ -235,8 +274,7 @@ void TrainerWindow::OpenHistory() {
     history->setWindowFlag(Qt::Window);
     history->show();
   } catch (const std::exception& e) {
-    last_error_ = e.what();
-    statusBar()->showMessage(QString::fromStdString(last_error_));
+    ShowError(e.what());
   }
 }
 
@@ -249,8 +287,7 @@ bool TrainerWindow::eventFilter(QObject* watched, QEvent* event) {
         runner_->SetPaused(!runner_->Status().paused);
         return true;
       case Qt::Key_R:
-        runner_->Reset();
-        started_unix_s_ = UnixNow();
+        ResetSession();
         return true;
       case Qt::Key_Return:
       case Qt::Key_Enter:

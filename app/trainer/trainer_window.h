@@ -7,6 +7,7 @@
 
 #include <QMainWindow>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +17,7 @@
 #include "app/session/live_input.h"
 #include "app/session/session_runner.h"
 
+class QAction;
 class QLabel;
 class QTimer;
 class QVTKOpenGLNativeWidget;
@@ -49,6 +51,18 @@ class TrainerWindow : public QMainWindow {
 
   /// Ends the session now (as the End key does).
   void EndSession();
+  /// Ends the session and stores it before returning (when the window is about to go: another
+  /// scenario was opened). Nothing to do when the session has already finished.
+  void EndAndStoreSession();
+  /// Starts the session over from the rest state (as the R key does); the finished one, if it
+  /// was, stays stored and the new one is stored when it ends.
+  void ResetSession();
+  /// Session > Open scenario... asks for a scenario file and calls `open` with it (TrainerApp
+  /// replaces this window). Without an opener the action is disabled.
+  void SetScenarioOpener(std::function<void(const std::filesystem::path&)> open);
+  /// Shows an error in the status bar and keeps it as last_error().
+  void ShowError(const std::string& message);
+  const Scenario& scenario() const { return scenario_; }
   bool session_finished() const { return stored_ || finished_shown_; }
   /// Id of the stored record, once the finished session was written.
   std::optional<std::int64_t> stored_session_id() const { return stored_id_; }
@@ -85,6 +99,9 @@ class TrainerWindow : public QMainWindow {
   bool pedal_ = false;
   bool finished_shown_ = false, stored_ = false;
   std::optional<std::int64_t> stored_id_;
+  int session_number_ = 0;  // RunnerStatus::session of the session this window shows
+  std::function<void(const std::filesystem::path&)> open_scenario_;
+  QAction* open_scenario_action_ = nullptr;
   std::string last_error_;
   std::int64_t started_unix_s_ = 0;
 };

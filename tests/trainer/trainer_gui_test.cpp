@@ -6,18 +6,23 @@
 #include <QVTKOpenGLNativeWidget.h>
 #include <gtest/gtest.h>
 
+#include <QAction>
 #include <QApplication>
 #include <QLabel>
 #include <QSurfaceFormat>
 #include <QTest>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <sstream>
+#include <string>
 
 #include "app/history/metrics_panel.h"
 #include "app/records/session_store.h"
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario_loader.h"
 #include "app/session/dissection_setup.h"
+#include "app/trainer/trainer_app.h"
 #include "app/trainer/trainer_window.h"
 #include "device/input/input_recording.h"
 
@@ -48,6 +53,23 @@ class TrainerGuiTest : public ::testing::Test {
     w->resize(800, 450);
     w->show();
     return w;
+  }
+  // The default scenario under another name, written to the test directory (mesh paths made
+  // absolute).
+  std::filesystem::path WriteVariantScenario(const std::string& name) const {
+    std::ifstream in(DefaultScenarioPath());
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string toml = text.str();
+    const std::string anatomy = (DefaultScenarioPath().parent_path().parent_path() / "anatomy").string() + "/";
+    for (size_t at = toml.find("\"../anatomy/"); at != std::string::npos; at = toml.find("\"../anatomy/", at))
+      toml.replace(at + 1, 11, anatomy);
+    const size_t name_at = toml.find("name = \"" + scenario_->name + "\"");
+    EXPECT_NE(name_at, std::string::npos);
+    toml.replace(name_at, 9 + scenario_->name.size(), "name = \"" + name + "\"");
+    const auto path = dir_ / "variant.toml";
+    std::ofstream(path) << toml;
+    return path;
   }
   static QString Label(TrainerWindow& w, const char* name) {
     auto* label = w.metrics_panel()->findChild<QLabel*>(name);
@@ -126,6 +148,71 @@ TEST_F(TrainerGuiTest, KeysMoveTheInstrumentsPauseAndEndTheSession) {
   ASSERT_EQ(sessions.size(), 1u);
   EXPECT_GT(sessions[0].record.metrics.path_length_left_m, 0.005);  // the keys moved the grasper tip
   EXPECT_EQ(sessions[0].record.metrics.path_length_right_m, 0.0);   // the hook was not touched
+}
+
+TEST_F(TrainerGuiTest, ResetAfterTheEndStartsASessionThatIsStoredToo) {
+  TrainerOptions options;
+  options.trainee_id = "resident-9";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  auto w = MakeWindow(options);
+  QWidget* gl = w->findChild<QVTKOpenGLNativeWidget*>();
+  ASSERT_NE(gl, nullptr);
+  QTest::qWait(200);
+  QTest::keyClick(gl, Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 30000)) << w->last_error();
+  const std::int64_t first = *w->stored_session_id();
+  QTest::keyClick(gl, Qt::Key_R);  // a new session from the rest state
+  EXPECT_FALSE(w->session_finished());
+  QTest::qWait(300);
+  EXPECT_FALSE(w->session_finished());  // the first session's end does not end this one
+  QTest::keyClick(gl, Qt::Key_P);       // pause, then end while paused
+  QTest::keyClick(gl, Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 30000)) << w->last_error();
+  EXPECT_NE(*w->stored_session_id(), first);
+  EXPECT_EQ(OpenSessionStore(options.records_location)->List("resident-9").size(), 2u);
+}
+
+TEST_F(TrainerGuiTest, OpeningAnotherScenarioStoresTheRunningSessionAndRunsTheNewOne) {
+  TrainerOptions options;
+  options.trainee_id = "resident-10";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  TrainerApp app(options, QSize(800, 450));
+  ASSERT_TRUE(app.Open(DefaultScenarioPath())) << app.last_error();
+  TrainerWindow* first = app.window();
+  ASSERT_NE(first, nullptr);
+  EXPECT_TRUE(first->findChild<QAction*>("open_scenario")->isEnabled());
+  QWidget* gl = first->findChild<QVTKOpenGLNativeWidget*>();
+  QTest::qWait(300);
+  for (int i = 0; i < 5; ++i) QTest::keyClick(gl, Qt::Key_D);  // move the grasper
+
+  // A file that does not load: the open scenario's session goes on, the error names the file.
+  const auto broken = dir_ / "broken.toml";
+  std::ofstream(broken) << "[scenario]\nname = 3\n";
+  EXPECT_FALSE(app.Open(broken));
+  EXPECT_NE(app.last_error().find("broken.toml:2"), std::string::npos) << app.last_error();
+  EXPECT_EQ(app.window(), first);
+  EXPECT_EQ(first->last_error(), app.last_error());
+  EXPECT_FALSE(first->session_finished());
+
+  // Another scenario: the running session is ended and stored under the old scenario first.
+  ASSERT_TRUE(app.Open(WriteVariantScenario("Cholecystectomy, stiff ligaments"))) << app.last_error();
+  TrainerWindow* second = app.window();
+  EXPECT_EQ(second->scenario().name, "Cholecystectomy, stiff ligaments");
+  EXPECT_TRUE(second->windowTitle().contains("stiff ligaments")) << second->windowTitle().toStdString();
+  auto store = OpenSessionStore(options.records_location);
+  auto sessions = store->List("resident-10");
+  ASSERT_EQ(sessions.size(), 1u);
+  EXPECT_EQ(sessions[0].record.scenario, scenario_->name);
+  EXPECT_GT(sessions[0].record.metrics.path_length_left_m, 0.0);  // the keys moved the grasper
+
+  // The new scenario's session runs and is stored under its name.
+  QTest::qWait(300);
+  EXPECT_FALSE(second->session_finished());
+  QTest::keyClick(second->findChild<QVTKOpenGLNativeWidget*>(), Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return second->stored_session_id().has_value(); }, 30000)) << second->last_error();
+  sessions = store->List("resident-10");
+  ASSERT_EQ(sessions.size(), 2u);
+  EXPECT_EQ(sessions[1].record.scenario, "Cholecystectomy, stiff ligaments");
 }
 
 }  // namespace

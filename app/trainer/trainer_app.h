@@ -1,0 +1,41 @@
+#pragma once
+// The trainer's top level: owns the window of the open scenario and replaces it when the
+// resident opens another one (Session > Open scenario...). The running session is ended and
+// stored first; a scenario that does not load leaves the open one running, with the error shown.
+
+#include <QSize>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "app/trainer/trainer_window.h"
+
+namespace vesica::app {
+
+class TrainerApp {
+ public:
+  /// `options.replay_file` drives only the first scenario opened; later ones take their input
+  /// from the scenario (keyboard, arms or its own replay).
+  TrainerApp(TrainerOptions options, QSize window_size);
+  ~TrainerApp();
+  TrainerApp(const TrainerApp&) = delete;
+  TrainerApp& operator=(const TrainerApp&) = delete;
+
+  /// Loads the scenario, its meshes and the dissection model (seconds; the liver's Green's
+  /// functions come from the cache after the first run) and shows it in a new window. Returns
+  /// false when it fails to load: last_error() names the file and what is wrong, and the window
+  /// open before (if any) goes on as it was.
+  bool Open(const std::filesystem::path& scenario_path);
+
+  /// The window of the open scenario; null until one opened.
+  TrainerWindow* window() const { return window_.get(); }
+  const std::string& last_error() const { return last_error_; }
+
+ private:
+  TrainerOptions options_;
+  QSize window_size_;
+  std::unique_ptr<TrainerWindow> window_;
+  std::string last_error_;
+};
+
+}  // namespace vesica::app
