@@ -26,6 +26,8 @@ struct FemBody::Workspace {
   Eigen::VectorXd last_increment;           // PCG warm start
   IncrementExtrapolation extrapolation;     // kRotatedFactorPcg: warm start from the last increments
   Eigen::VectorXd warm_start_product;       // S times the kRotatedFactorPcg warm start
+  Eigen::VectorXd solution_product;         // S du after a kRotatedFactorPcg solve (b - r)
+  bool solution_product_valid = false;
   std::vector<Eigen::Vector4d> rotations;  // corotational warm start, per tet
   BlockJacobiPreconditioner jacobi;
   CholmodSolver cholmod;
@@ -144,6 +146,27 @@ void FemBody::SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   for (int i : m.fixed_dofs) y[i] = x[i];
 }
 
+double FemBody::TangentQuadraticForm(const Eigen::VectorXd& du) const {
+  const FemModel& m = *model_;
+  const Workspace& w = *work_;
+  if (!w.solution_product_valid || m.uses_consistent_mass() || w.solution_product.size() != du.size()) {
+    Eigen::VectorXd k_du;
+    TangentTimes(du, k_du);
+    return du.dot(k_du);
+  }
+  // du . S du = stiffness_scale du.K du + sum over free dofs of (mass_scale m + k + c_D d) du^2;
+  // fixed dofs have du = 0 (their rows are the identity's and the right-hand side is 0 there).
+  const FemSettings& s = m.settings;
+  const SystemCoefficients c = IntegratorCoefficients(s);
+  const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;
+  const double stiffness_scale = 1.0 + c.damping * s.rayleigh_stiffness_s;
+  double diagonal = mass_scale * du.cwiseAbs2().dot(m.lumped_mass_kg.cwiseProduct(m.free_dofs));
+  if (w.attachment.any)
+    diagonal += du.cwiseAbs2().dot(
+        (w.attachment.stiffness_N_per_m + c.damping * w.attachment.damping_Ns_per_m).cwiseProduct(m.free_dofs));
+  return (du.dot(w.solution_product) - diagonal) / stiffness_scale;
+}
+
 void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
   const FemModel& m = *model_;
   const FemSettings& s = m.settings;
@@ -224,6 +247,7 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
   const FemSettings& s = m.settings;
   Workspace& w = *work_;
   PcgResult r;
+  w.solution_product_valid = false;
   if (s.solver == LinearSolverKind::kCholmod) {
     const bool linear = s.element_model == ElementModel::kLinear;
     const bool refresh = !w.cholmod.factorized() || w.force_refactor ||
@@ -306,7 +330,8 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
             apply_rotated_factor(res, z);
           }
         },
-        tolerance, max_iterations, warm_start_product);
+        tolerance, max_iterations, warm_start_product, &w.solution_product);
+    w.solution_product_valid = true;
   } else {
     w.jacobi.Compute(m.pattern, w.system_values);
     du = w.last_increment;
@@ -379,9 +404,7 @@ StepReport FemBody::Step() {
   if (!v_next.allFinite() || !a_next.allFinite()) return reject("non-finite velocity or acceleration");
 
   // Energy after the step, elastic part to second order about u (one product with K_t).
-  Eigen::VectorXd k_du;
-  TangentTimes(du, k_du);
-  const double elastic_after = w.elastic_energy + w.internal_force.dot(du) + 0.5 * du.dot(k_du);
+  const double elastic_after = w.elastic_energy + w.internal_force.dot(du) + 0.5 * TangentQuadraticForm(du);
   const double energy_after = 0.5 * v_next.dot(m.MassTimes(v_next)) + elastic_after;
   const double work = std::abs(f_ext.dot(du));
   if (!std::isfinite(energy_after) || energy_after > s.max_energy_growth * (energy_before + work) + s.energy_floor_J) {

@@ -78,6 +78,9 @@ class FemBody {
   void TangentTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   /// y = S x (the system matrix SystemValuesFromTangent builds) from products, for MatrixFree().
   void SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// du . K_t du for the step's energy check: from S du, which kRotatedFactorPcg's solve leaves
+  /// (S du = b - r), minus the mass and spring terms, when the mass is lumped; else one product.
+  double TangentQuadraticForm(const Eigen::VectorXd& du) const;
 
   std::shared_ptr<const FemModel> model_;
   FemState state_;

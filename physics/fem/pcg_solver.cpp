@@ -138,11 +138,12 @@ void UpperBlocksTimes(const SparsePattern& p, const Eigen::VectorXd& values, con
 
 PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                    const Preconditioner& preconditioner, double relative_tolerance, int max_iterations,
-                   const Eigen::VectorXd* initial_product) {
+                   const Eigen::VectorXd* initial_product, Eigen::VectorXd* final_product) {
   PcgResult result;
   const double b_norm = b.norm();
   if (b_norm == 0.0) {
     x.setZero(b.size());
+    if (final_product) final_product->setZero(b.size());
     result.converged = true;
     return result;
   }
@@ -159,6 +160,7 @@ PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen:
   if (r_norm <= target) {
     result.relative_residual = r_norm / b_norm;
     result.converged = true;
+    if (final_product) *final_product = b - r;
     return result;
   }
   preconditioner(r, z);
@@ -181,6 +183,7 @@ PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen:
   }
   result.relative_residual = r_norm / b_norm;
   result.converged = r_norm <= target;
+  if (final_product) *final_product = b - r;
   return result;
 }
 

@@ -58,9 +58,12 @@ using MatrixOperator = std::function<void(const Eigen::VectorXd& x, Eigen::Vecto
 
 /// Solves A x = b with A given as products (matrix-free); x holds the warm start on entry.
 /// initial_product: A x for that warm start when the caller has it (saves one product), or null.
+/// final_product (optional): A x at exit, as b - r with r the updated residual (equal to the true
+/// product up to rounding, |error| <~ 1e-15 |b| per iteration), so a caller needs no product of
+/// its own.
 PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                    const Preconditioner& preconditioner, double relative_tolerance, int max_iterations,
-                   const Eigen::VectorXd* initial_product = nullptr);
+                   const Eigen::VectorXd* initial_product = nullptr, Eigen::VectorXd* final_product = nullptr);
 
 /// Solves A x = b; x holds the warm start on entry and the solution on exit.
 PcgResult SolvePcg(const SparsePattern& pattern, const Eigen::VectorXd& values,
