@@ -5,6 +5,23 @@
 
 namespace vesica::app {
 
+namespace {
+// The one place where a manual command becomes a pose: insertion and pitch kept in range.
+void Nudge(physics::InstrumentPose& pose, double physics::InstrumentPose::*field, double delta, double max_insertion_m,
+           const KeyboardStep& step) {
+  if (field == &physics::InstrumentPose::insertion_m) {
+    pose.insertion_m = std::clamp(pose.insertion_m + delta, 0.0, max_insertion_m);
+  } else {
+    pose.*field += delta;
+    pose.pitch_rad = std::clamp(pose.pitch_rad, -step.max_pitch_rad, step.max_pitch_rad);
+  }
+}
+
+double MaxInsertion(const std::vector<double>& max_insertion_m, std::size_t instrument) {
+  return instrument < max_insertion_m.size() ? max_insertion_m[instrument] : 0.0;
+}
+}  // namespace
+
 bool ApplyInstrumentKey(char key, std::vector<physics::InstrumentPose>& poses,
                         const std::vector<double>& max_insertion_m, bool& pedal, const KeyboardStep& step) {
   const char k = static_cast<char>(std::tolower(static_cast<unsigned char>(key)));
@@ -36,22 +53,33 @@ bool ApplyInstrumentKey(char key, std::vector<physics::InstrumentPose>& poses,
   for (const auto& b : kBindings) {
     if (b.key != k) continue;
     if (b.instrument >= poses.size()) return false;
-    auto& pose = poses[b.instrument];
-    if (b.field == &physics::InstrumentPose::insertion_m) {
-      const double max = b.instrument < max_insertion_m.size() ? max_insertion_m[b.instrument] : 0.0;
-      pose.insertion_m = std::clamp(pose.insertion_m + b.sign * step.insertion_m, 0.0, max);
-    } else {
-      pose.*b.field += b.sign * step.angle_rad;
-      pose.pitch_rad = std::clamp(pose.pitch_rad, -step.max_pitch_rad, step.max_pitch_rad);
-    }
+    const bool insertion = b.field == &physics::InstrumentPose::insertion_m;
+    Nudge(poses[b.instrument], b.field, b.sign * (insertion ? step.insertion_m : step.angle_rad),
+          MaxInsertion(max_insertion_m, b.instrument), step);
     return true;
   }
   return false;
 }
 
+bool ApplyInstrumentDrag(std::size_t instrument, double dx_px, double dy_px,
+                         std::vector<physics::InstrumentPose>& poses, const KeyboardStep& step) {
+  if (instrument >= poses.size()) return false;
+  Nudge(poses[instrument], &physics::InstrumentPose::yaw_rad, -dx_px * step.angle_rad_per_pixel, 0.0, step);
+  Nudge(poses[instrument], &physics::InstrumentPose::pitch_rad, -dy_px * step.angle_rad_per_pixel, 0.0, step);
+  return true;
+}
+
+bool ApplyInstrumentWheel(std::size_t instrument, double notches, std::vector<physics::InstrumentPose>& poses,
+                          const std::vector<double>& max_insertion_m, const KeyboardStep& step) {
+  if (instrument >= poses.size()) return false;
+  Nudge(poses[instrument], &physics::InstrumentPose::insertion_m, notches * step.insertion_m_per_wheel_notch,
+        MaxInsertion(max_insertion_m, instrument), step);
+  return true;
+}
+
 std::string KeyboardHelp() {
-  return "Grasper: A/D yaw, W/S pitch, Q/E in/out, Z/C roll, X jaw   |   Hook: J/L yaw, I/K pitch, U/O in/out, "
-         "N/, roll, M pedal";
+  return "Grasper: A/D yaw, W/S pitch, Q/E in/out, Z/C roll, X jaw, left drag (+wheel)   |   Hook: J/L yaw, I/K "
+         "pitch, U/O in/out, N/, roll, M pedal, right drag (+wheel)";
 }
 
 }  // namespace vesica::app

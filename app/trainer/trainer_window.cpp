@@ -11,8 +11,10 @@
 #include <QKeyEvent>
 #include <QLabel>
 #include <QMenuBar>
+#include <QMouseEvent>
 #include <QStatusBar>
 #include <QTimer>
+#include <QWheelEvent>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -165,8 +167,8 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
   if (auto* dock = findChild<QDockWidget*>("metrics_dock")) dock->hide();
   started_unix_s_ = UnixNow();
   runner_->Start();
-  statusBar()->showMessage(
-      QString::fromStdString(what + "  |  P pause, R reset, Enter end, +/- zoom, arrows look around, F2 diagnostics"));
+  statusBar()->showMessage(QString::fromStdString(
+      what + "  |  P pause, R reset, Enter end, +/- zoom, arrows look around, Shift+drag pan, F2 diagnostics"));
   return true;
 }
 
@@ -323,16 +325,64 @@ bool TrainerWindow::eventFilter(QObject* watched, QEvent* event) {
     const QString text = key->text();
     if (live_input_ && text.size() == 1 &&
         ApplyInstrumentKey(text.at(0).toLatin1(), poses_, max_insertion_m_, pedal_)) {
-      for (int i = 0; i < 2 && i < static_cast<int>(poses_.size()); ++i) {
-        device::InstrumentInput in;
-        in.pose = poses_[static_cast<size_t>(i)];
-        in.pedal = i == 1 && pedal_;
-        live_input_->Set(i, in);
-      }
+      SendManualPoses();
       return true;
     }
   }
+  if (watched == vtk_widget_ && live_input_ && MouseEvent(event)) return true;
   return QMainWindow::eventFilter(watched, event);
+}
+
+bool TrainerWindow::MouseEvent(QEvent* event) {
+  switch (event->type()) {
+    case QEvent::MouseButtonPress: {
+      // Left button: grasper, right: hook. With Shift, or the middle button, VTK pans the view.
+      const auto* mouse = static_cast<QMouseEvent*>(event);
+      if (drag_instrument_ >= 0) return true;  // a second button during a drag: ignored
+      if ((mouse->modifiers() & Qt::ShiftModifier) ||
+          (mouse->button() != Qt::LeftButton && mouse->button() != Qt::RightButton))
+        return false;
+      drag_instrument_ = mouse->button() == Qt::LeftButton ? 0 : 1;
+      drag_x_ = mouse->pos().x();
+      drag_y_ = mouse->pos().y();
+      return true;
+    }
+    case QEvent::MouseMove: {
+      if (drag_instrument_ < 0) return false;
+      const auto* mouse = static_cast<QMouseEvent*>(event);
+      ApplyInstrumentDrag(static_cast<std::size_t>(drag_instrument_), mouse->pos().x() - drag_x_,
+                          mouse->pos().y() - drag_y_, poses_);
+      drag_x_ = mouse->pos().x();
+      drag_y_ = mouse->pos().y();
+      SendManualPoses();
+      return true;
+    }
+    case QEvent::MouseButtonRelease: {
+      const auto* mouse = static_cast<QMouseEvent*>(event);
+      if (drag_instrument_ < 0) return false;
+      if (mouse->button() == (drag_instrument_ == 0 ? Qt::LeftButton : Qt::RightButton)) drag_instrument_ = -1;
+      return true;
+    }
+    case QEvent::Wheel: {  // while dragging: insertion; otherwise VTK zooms
+      if (drag_instrument_ < 0) return false;
+      const auto* wheel = static_cast<QWheelEvent*>(event);
+      ApplyInstrumentWheel(static_cast<std::size_t>(drag_instrument_), wheel->angleDelta().y() / 120.0, poses_,
+                           max_insertion_m_);
+      SendManualPoses();
+      return true;
+    }
+    default:
+      return false;
+  }
+}
+
+void TrainerWindow::SendManualPoses() {
+  for (int i = 0; i < 2 && i < static_cast<int>(poses_.size()); ++i) {
+    device::InstrumentInput in;
+    in.pose = poses_[static_cast<size_t>(i)];
+    in.pedal = i == 1 && pedal_;
+    live_input_->Set(i, in);
+  }
 }
 
 }  // namespace vesica::app

@@ -94,7 +94,12 @@ class TrainerWindow : public QMainWindow {
   MetricsPanel* metrics_panel_ = nullptr;
   QTimer* timer_ = nullptr;
   LoopStats render_stats_;
+  void SendManualPoses();          // keyboard/mouse poses and pedal -> the live input
+  bool MouseEvent(QEvent* event);  // a drag or wheel that moves an instrument; true if used
+
   std::vector<physics::InstrumentPose> poses_;
+  int drag_instrument_ = -1;  // instrument a mouse button is dragging, -1: none
+  int drag_x_ = 0, drag_y_ = 0;
   std::vector<double> max_insertion_m_;
   bool pedal_ = false;
   bool finished_shown_ = false, stored_ = false;

@@ -9,8 +9,10 @@
 #include <QAction>
 #include <QApplication>
 #include <QLabel>
+#include <QMouseEvent>
 #include <QSurfaceFormat>
 #include <QTest>
+#include <QWheelEvent>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -22,6 +24,7 @@
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario_loader.h"
 #include "app/session/dissection_setup.h"
+#include "app/trainer/keyboard_control.h"
 #include "app/trainer/trainer_app.h"
 #include "app/trainer/trainer_window.h"
 #include "device/input/input_recording.h"
@@ -148,6 +151,59 @@ TEST_F(TrainerGuiTest, KeysMoveTheInstrumentsPauseAndEndTheSession) {
   ASSERT_EQ(sessions.size(), 1u);
   EXPECT_GT(sessions[0].record.metrics.path_length_left_m, 0.005);  // the keys moved the grasper tip
   EXPECT_EQ(sessions[0].record.metrics.path_length_right_m, 0.0);   // the hook was not touched
+}
+
+TEST_F(TrainerGuiTest, MouseDragsTurnTheInstrumentsAndTheWheelInsertsThem) {
+  TrainerOptions options;
+  options.trainee_id = "resident-11";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  options.recordings_dir = dir_ / "recordings";
+  auto w = MakeWindow(options);
+  QWidget* gl = w->findChild<QVTKOpenGLNativeWidget*>();
+  ASSERT_NE(gl, nullptr);
+  QTest::qWait(200);
+  auto send_mouse = [&](QEvent::Type type, QPoint at, Qt::MouseButton button, Qt::MouseButtons held,
+                        Qt::KeyboardModifiers modifiers = Qt::NoModifier) {
+    QMouseEvent event(type, at, gl->mapToGlobal(at), button, held, modifiers);
+    QApplication::sendEvent(gl, &event);
+  };
+  auto send_wheel = [&](QPoint at, int notches, Qt::MouseButtons held) {
+    QWheelEvent event(at, gl->mapToGlobal(at), QPoint(), QPoint(0, 120 * notches), held, Qt::NoModifier,
+                      Qt::NoScrollPhase, false);
+    QApplication::sendEvent(gl, &event);
+  };
+  // Grasper: left button, 40 px left in two moves and 10 px up.
+  send_mouse(QEvent::MouseButtonPress, {200, 200}, Qt::LeftButton, Qt::LeftButton);
+  send_mouse(QEvent::MouseMove, {180, 195}, Qt::NoButton, Qt::LeftButton);
+  send_mouse(QEvent::MouseMove, {160, 190}, Qt::NoButton, Qt::LeftButton);
+  send_mouse(QEvent::MouseButtonRelease, {160, 190}, Qt::LeftButton, Qt::NoButton);
+  // Hook: right button, 20 px right, and the wheel 3 notches away while dragging.
+  send_mouse(QEvent::MouseButtonPress, {300, 200}, Qt::RightButton, Qt::RightButton);
+  send_mouse(QEvent::MouseMove, {320, 200}, Qt::NoButton, Qt::RightButton);
+  send_wheel({320, 200}, 3, Qt::RightButton);
+  send_mouse(QEvent::MouseButtonRelease, {320, 200}, Qt::RightButton, Qt::NoButton);
+  // Shift + drag pans the view, not an instrument; a plain move after the release moves nothing.
+  send_mouse(QEvent::MouseButtonPress, {200, 200}, Qt::LeftButton, Qt::LeftButton, Qt::ShiftModifier);
+  send_mouse(QEvent::MouseMove, {100, 100}, Qt::NoButton, Qt::LeftButton, Qt::ShiftModifier);
+  send_mouse(QEvent::MouseButtonRelease, {100, 100}, Qt::LeftButton, Qt::NoButton, Qt::ShiftModifier);
+  send_mouse(QEvent::MouseMove, {10, 10}, Qt::NoButton, Qt::NoButton);
+  QTest::qWait(300);
+  QTest::keyClick(gl, Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 30000)) << w->last_error();
+
+  const auto sessions = OpenSessionStore(options.records_location)->List("resident-11");
+  ASSERT_EQ(sessions.size(), 1u);
+  const device::InputRecording rec = device::ReadInputRecording(sessions[0].record.input_recording_path);
+  ASSERT_GE(rec.frames.size(), 2u);
+  const auto& first = rec.frames.front().instruments;
+  const auto& last = rec.frames.back().instruments;
+  const KeyboardStep step;
+  EXPECT_NEAR(last[0].pose.yaw_rad - first[0].pose.yaw_rad, 40 * step.angle_rad_per_pixel, 1e-12);
+  EXPECT_NEAR(last[0].pose.pitch_rad - first[0].pose.pitch_rad, 10 * step.angle_rad_per_pixel, 1e-12);
+  EXPECT_EQ(last[0].pose.insertion_m, first[0].pose.insertion_m);
+  EXPECT_NEAR(last[1].pose.yaw_rad - first[1].pose.yaw_rad, -20 * step.angle_rad_per_pixel, 1e-12);
+  EXPECT_EQ(last[1].pose.pitch_rad, first[1].pose.pitch_rad);
+  EXPECT_NEAR(last[1].pose.insertion_m - first[1].pose.insertion_m, 3 * step.insertion_m_per_wheel_notch, 1e-12);
 }
 
 TEST_F(TrainerGuiTest, ResetAfterTheEndStartsASessionThatIsStoredToo) {
