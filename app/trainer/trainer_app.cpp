@@ -44,7 +44,7 @@ bool TrainerApp::Open(const std::filesystem::path& scenario_path) {
   options_.replay_file.clear();
   // Called from the old window's menu: replace it once that call has returned.
   next->SetScenarioOpener(
-      [this](const std::filesystem::path& path) { QTimer::singleShot(0, [this, path] { Open(path); }); });
+      [this](const std::filesystem::path& path) { QTimer::singleShot(0, &deferred_, [this, path] { Open(path); }); });
   next->resize(window_size_);
   if (window_) next->move(window_->pos());
   window_ = std::move(next);

@@ -3,6 +3,7 @@
 // resident opens another one (Session > Open scenario...). The running session is ended and
 // stored first; a scenario that does not load leaves the open one running, with the error shown.
 
+#include <QObject>
 #include <QSize>
 #include <filesystem>
 #include <memory>
@@ -36,6 +37,7 @@ class TrainerApp {
   QSize window_size_;
   std::unique_ptr<TrainerWindow> window_;
   std::string last_error_;
+  QObject deferred_;  // context of the deferred Open calls: they die with this object
 };
 
 }  // namespace vesica::app

@@ -78,7 +78,7 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
     const QString file = QFileDialog::getOpenFileName(
         this, "Open a scenario", QString::fromStdString(DefaultScenarioPath().parent_path().string()),
         "Vesica scenarios (*.toml);;All files (*)");
-    if (!file.isEmpty() && open_scenario_) open_scenario_(file.toStdString());
+    if (!file.isEmpty()) RequestScenario(file.toStdString());
   });
   open_scenario_action_->setObjectName("open_scenario");
   open_scenario_action_->setEnabled(false);
@@ -198,6 +198,12 @@ void TrainerWindow::ResetSession() {
 void TrainerWindow::SetScenarioOpener(std::function<void(const std::filesystem::path&)> open) {
   open_scenario_ = std::move(open);
   open_scenario_action_->setEnabled(static_cast<bool>(open_scenario_));
+}
+
+bool TrainerWindow::RequestScenario(const std::filesystem::path& scenario_path) {
+  if (!open_scenario_) return false;
+  open_scenario_(scenario_path);
+  return true;
 }
 
 void TrainerWindow::ShowError(const std::string& message) {

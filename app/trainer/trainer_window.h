@@ -60,6 +60,9 @@ class TrainerWindow : public QMainWindow {
   /// Session > Open scenario... asks for a scenario file and calls `open` with it (TrainerApp
   /// replaces this window). Without an opener the action is disabled.
   void SetScenarioOpener(std::function<void(const std::filesystem::path&)> open);
+  /// What Session > Open scenario... does once the file is chosen: hands it to the opener.
+  /// Returns false without an opener.
+  bool RequestScenario(const std::filesystem::path& scenario_path);
   /// Shows an error in the status bar and keeps it as last_error().
   void ShowError(const std::string& message);
   const Scenario& scenario() const { return scenario_; }

@@ -250,8 +250,10 @@ TEST_F(TrainerGuiTest, OpeningAnotherScenarioStoresTheRunningSessionAndRunsTheNe
   EXPECT_EQ(first->last_error(), app.last_error());
   EXPECT_FALSE(first->session_finished());
 
-  // Another scenario: the running session is ended and stored under the old scenario first.
-  ASSERT_TRUE(app.Open(WriteVariantScenario("Cholecystectomy, stiff ligaments"))) << app.last_error();
+  // Another scenario, chosen in the old window's menu: the window is replaced once the menu's
+  // call has returned; the running session is ended and stored under the old scenario first.
+  ASSERT_TRUE(first->RequestScenario(WriteVariantScenario("Cholecystectomy, stiff ligaments")));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return app.window() != first; }, 60000)) << app.last_error();
   TrainerWindow* second = app.window();
   EXPECT_EQ(second->scenario().name, "Cholecystectomy, stiff ligaments");
   EXPECT_TRUE(second->windowTitle().contains("stiff ligaments")) << second->windowTitle().toStdString();
