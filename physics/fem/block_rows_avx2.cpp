@@ -142,6 +142,67 @@ void ForwardSweepFromZeroAndUpperTimesAvx2(const BlockRowsView& a, const double*
   padded_y.CopyTo(y, a.nodes);
 }
 
+namespace {
+
+// As GatherBlocks, for blocks [begin, end) of the float rows: row r of a block widened to double
+// (its 4th float is the next row's first: times x's lane 3, which is 0).
+inline void GatherFloatBlocks(const FloatBlockRowsView& a, const double* x4, int begin, int end, __m256d& s0,
+                              __m256d& s1, __m256d& s2) {
+  for (int k = begin; k < end; ++k) {
+    const __m256d xa = _mm256_load_pd(x4 + 4 * a.column[k]);
+    const float* rows = a.values + 9 * static_cast<long>(k);
+    s0 = _mm256_fmadd_pd(_mm256_cvtps_pd(_mm_loadu_ps(rows)), xa, s0);
+    s1 = _mm256_fmadd_pd(_mm256_cvtps_pd(_mm_loadu_ps(rows + 3)), xa, s1);
+    s2 = _mm256_fmadd_pd(_mm256_cvtps_pd(_mm_loadu_ps(rows + 6)), xa, s2);
+  }
+}
+
+}  // namespace
+
+void FloatBlockGaussSeidelSweepAvx2(const FloatBlockRowsView& a, const double* inverse_diagonal, const double* b,
+                                    double* x, bool forward, double* scratch) {
+  const __m256i three = Three();
+  PaddedNodes padded(scratch, a.nodes);
+  padded.CopyFrom(x, a.nodes);
+  const double* x4 = padded.data();
+  for (int step = 0; step < a.nodes; ++step) {
+    const int i = forward ? step : a.nodes - 1 - step;
+    __m256d s0 = _mm256_setzero_pd(), s1 = s0, s2 = s0;
+    GatherFloatBlocks(a, x4, a.row_begin[i], a.diagonal_block[i], s0, s1, s2);
+    GatherFloatBlocks(a, x4, a.diagonal_block[i] + 1, a.row_begin[i + 1], s0, s1, s2);
+    const __m256d t = _mm256_sub_pd(_mm256_maskload_pd(b + 3 * i, three), Sums(s0, s1, s2));
+    padded.Store(i, Times(inverse_diagonal + 9 * i, t));
+  }
+  padded.CopyTo(x, a.nodes);
+}
+
+void FloatForwardSweepFromZeroAndUpperTimesAvx2(const FloatBlockRowsView& a, const double* inverse_diagonal,
+                                                const double* b, double* x, double* y, double* scratch) {
+  const __m256i three = Three();
+  PaddedNodes padded_x(scratch, a.nodes), padded_y(scratch + 4 * a.nodes + 4, a.nodes);  // zeros
+  const double* x4 = padded_x.data();
+  double* y4 = padded_y.data();
+  for (int i = 0; i < a.nodes; ++i) {
+    __m256d s0 = _mm256_setzero_pd(), s1 = s0, s2 = s0;
+    GatherFloatBlocks(a, x4, a.row_begin[i], a.diagonal_block[i], s0, s1, s2);  // x_j = 0 for j > i
+    const __m256d t = _mm256_sub_pd(_mm256_maskload_pd(b + 3 * i, three), Sums(s0, s1, s2));
+    const __m256d xi = Times(inverse_diagonal + 9 * i, t);
+    padded_x.Store(i, xi);
+    const __m256d x0 = _mm256_permute4x64_pd(xi, 0x00), x1 = _mm256_permute4x64_pd(xi, 0x55),
+                  x2 = _mm256_permute4x64_pd(xi, 0xaa);
+    // y_j += A_ji x_i = sum_r x_i[r] (row r of block (i, j)); lane 3 collects junk CopyTo drops.
+    for (int k = a.row_begin[i]; k < a.diagonal_block[i]; ++k) {
+      double* yj = y4 + 4 * a.column[k];
+      const float* rows = a.values + 9 * static_cast<long>(k);
+      __m256d acc = _mm256_fmadd_pd(_mm256_cvtps_pd(_mm_loadu_ps(rows)), x0, _mm256_load_pd(yj));
+      acc = _mm256_fmadd_pd(_mm256_cvtps_pd(_mm_loadu_ps(rows + 3)), x1, acc);
+      _mm256_store_pd(yj, _mm256_fmadd_pd(_mm256_cvtps_pd(_mm_loadu_ps(rows + 6)), x2, acc));
+    }
+  }
+  padded_x.CopyTo(x, a.nodes);
+  padded_y.CopyTo(y, a.nodes);
+}
+
 }  // namespace vesica::physics
 
 #pragma GCC pop_options

@@ -35,4 +35,21 @@ void BlockGaussSeidelSweepAvx2(const BlockRowsView& a, const double* inverse_dia
 void ForwardSweepFromZeroAndUpperTimesAvx2(const BlockRowsView& a, const double* inverse_diagonal, const double* b,
                                            double* x, double* y, double* scratch);
 
+/// The node blocks of a symmetric matrix as rows of floats (block sparse row): node i's blocks
+/// (i, j) for blocks [row_begin[i], row_begin[i+1]), j = column[block] ascending, 9 floats each,
+/// A(3i+r, 3j+c) at 9 block + 3r + c; values padded by 4 floats (the kernels read 4 at a time).
+struct FloatBlockRowsView {
+  int nodes = 0;
+  const int* row_begin = nullptr;       ///< nodes + 1
+  const int* diagonal_block = nullptr;  ///< per node: its block (i, i)
+  const int* column = nullptr;          ///< per block
+  const float* values = nullptr;
+};
+
+/// The sweeps above on the float rows (arithmetic in double).
+void FloatBlockGaussSeidelSweepAvx2(const FloatBlockRowsView& a, const double* inverse_diagonal, const double* b,
+                                    double* x, bool forward, double* scratch);
+void FloatForwardSweepFromZeroAndUpperTimesAvx2(const FloatBlockRowsView& a, const double* inverse_diagonal,
+                                                const double* b, double* x, double* y, double* scratch);
+
 }  // namespace vesica::physics

@@ -30,6 +30,8 @@ struct FemBody::Workspace {
   bool solution_product_valid = false;
   std::vector<Eigen::Vector4d> rotations;  // corotational warm start, per tet
   BlockJacobiPreconditioner jacobi;
+  FloatBlockRows float_rows;  // settings.rotated_factor_float_sweeps: the sweeps' copy of S
+  bool float_sweeps = false;
   CholmodSolver cholmod;
   bool factor_matches_system = false;
   bool force_refactor = false;  // attachment changed: refactorise even between refreshes
@@ -280,7 +282,9 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
       w.force_refactor = false;
     }
     UpdateNodeRotations();
+    w.float_sweeps = s.rotated_factor_gauss_seidel && s.rotated_factor_float_sweeps && FloatBlockRows::available();
     if (s.rotated_factor_gauss_seidel) w.jacobi.Compute(m.pattern, w.system_values);
+    if (w.float_sweeps) w.float_rows.Update(m.pattern, w.system_values);
     const int nodes = m.num_nodes();
     // z = R S0^-1 R^T res, R block diagonal (one rotation per node).
     auto apply_rotated_factor = [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
@@ -320,12 +324,18 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
           if (s.rotated_factor_gauss_seidel) {
             // Forward block Gauss-Seidel sweep (with res - S z = -U z from the same pass), rotated-factor
             // correction, backward sweep.
-            ForwardSweepFromZeroAndUpperTimes(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z,
-                                              w.smoothed_residual);
+            if (w.float_sweeps)
+              ForwardSweepFromZeroAndUpperTimes(w.float_rows, w.jacobi.inverse_blocks(), res, z, w.smoothed_residual);
+            else
+              ForwardSweepFromZeroAndUpperTimes(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z,
+                                                w.smoothed_residual);
             w.smoothed_residual = -w.smoothed_residual;
             apply_rotated_factor(w.smoothed_residual, w.correction);
             z += w.correction;
-            BlockGaussSeidelSweep(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z, false);
+            if (w.float_sweeps)
+              BlockGaussSeidelSweep(w.float_rows, w.jacobi.inverse_blocks(), res, z, false);
+            else
+              BlockGaussSeidelSweep(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z, false);
           } else {
             apply_rotated_factor(res, z);
           }

@@ -69,6 +69,10 @@ struct FemSettings {
   /// sweep on the true system (symmetric multiplicative, still SPD): the sweeps remove the local
   /// error where element rotations differ from their nodes' (a grasped, sheared corner).
   bool rotated_factor_gauss_seidel = false;
+  /// rotated_factor_gauss_seidel: sweep a float copy of the system matrix stored in node-block rows
+  /// (FloatBlockRows: a third of the bytes the sweeps stream; PCG's own products stay double, so the
+  /// residual still reaches pcg_relative_tolerance). Needs AVX2 + FMA; the double matrix without.
+  bool rotated_factor_float_sweeps = true;
   /// kRotatedFactorPcg without the Gauss-Seidel sweeps (which need the matrix), corotational: apply
   /// the tangent element by element (R K R^T per tet, about one SpMV's cost) instead of assembling
   /// it every step. Same steps to rounding.

@@ -136,6 +136,74 @@ void UpperBlocksTimes(const SparsePattern& p, const Eigen::VectorXd& values, con
   }
 }
 
+bool FloatBlockRows::available() { return BlockRowKernelsUseAvx2(); }
+
+void FloatBlockRows::Update(const SparsePattern& p, const Eigen::VectorXd& values) {
+  const int nodes = static_cast<int>(p.structure.cols()) / 3;
+  const int* outer = p.structure.outerIndexPtr();
+  const int* inner = p.structure.innerIndexPtr();
+  if (nodes != nodes_ || p.structure.nonZeros() != nonzeros_) {
+    nodes_ = nodes;
+    nonzeros_ = p.structure.nonZeros();
+    row_begin_.assign(1, 0);
+    diagonal_block_.resize(nodes);
+    column_.clear();
+    source_.clear();
+    source_stride_.clear();
+    for (int i = 0; i < nodes; ++i) {
+      const int begin = outer[3 * i], stride = p.column_stride[i];
+      for (int k = begin; k < begin + stride; k += 3) {  // rows 3j..3j+2 of column 3i, j ascending
+        if (inner[k] == 3 * i) diagonal_block_[i] = static_cast<int>(column_.size());
+        column_.push_back(inner[k] / 3);
+        source_.push_back(k);
+        source_stride_.push_back(stride);
+      }
+      row_begin_.push_back(static_cast<int>(column_.size()));
+    }
+    values_.assign(9 * column_.size() + 4, 0.0f);
+  }
+  // Row r of block (i, j) is A(3i + r, 3j..3j+2) = A(3j..3j+2, 3i + r): column 3i + r's triplet.
+  const double* v = values.data();
+  float* out = values_.data();
+  for (size_t k = 0; k < column_.size(); ++k) {
+    const double* c0 = v + source_[k];
+    const int stride = source_stride_[k];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) out[9 * k + 3 * r + c] = static_cast<float>(c0[r * stride + c]);
+  }
+}
+
+namespace {
+FloatBlockRowsView RowsOf(const FloatBlockRows& rows, const std::vector<int>& row_begin,
+                          const std::vector<int>& diagonal_block, const std::vector<int>& column,
+                          const std::vector<float>& values) {
+  FloatBlockRowsView view;
+  view.nodes = rows.nodes();
+  view.row_begin = row_begin.data();
+  view.diagonal_block = diagonal_block.data();
+  view.column = column.data();
+  view.values = values.data();
+  return view;
+}
+}  // namespace
+
+void BlockGaussSeidelSweep(const FloatBlockRows& rows, const std::vector<Eigen::Matrix3d>& inverse_diagonal,
+                           const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward) {
+  const int nodes = rows.nodes_;
+  FloatBlockGaussSeidelSweepAvx2(RowsOf(rows, rows.row_begin_, rows.diagonal_block_, rows.column_, rows.values_),
+                                 inverse_diagonal.data()->data(), b.data(), x.data(), forward, SweepScratch(nodes));
+}
+
+void ForwardSweepFromZeroAndUpperTimes(const FloatBlockRows& rows, const std::vector<Eigen::Matrix3d>& inverse_diagonal,
+                                       const Eigen::VectorXd& b, Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  const int nodes = rows.nodes_;
+  x.resize(3 * nodes);
+  y.resize(3 * nodes);
+  FloatForwardSweepFromZeroAndUpperTimesAvx2(RowsOf(rows, rows.row_begin_, rows.diagonal_block_, rows.column_, rows.values_),
+                                             inverse_diagonal.data()->data(), b.data(), x.data(), y.data(),
+                                             SweepScratch(nodes));
+}
+
 PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                    const Preconditioner& preconditioner, double relative_tolerance, int max_iterations,
                    const Eigen::VectorXd* initial_product, Eigen::VectorXd* final_product) {

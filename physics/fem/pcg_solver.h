@@ -53,6 +53,38 @@ void ForwardSweepFromZeroAndUpperTimes(const SparsePattern& pattern, const Eigen
                                        const std::vector<Eigen::Matrix3d>& inverse_diagonal, const Eigen::VectorXd& b,
                                        Eigen::VectorXd& x, Eigen::VectorXd& y);
 
+/// A symmetric pattern matrix rounded to float, in node-block rows (9 floats a block, one column
+/// index a block), for the Gauss-Seidel sweeps of a preconditioner: a third of the bytes the
+/// double sweeps stream (values and row indices), and a preconditioner needs no more digits.
+/// Needs AVX2 + FMA (block_rows_simd.h); available() is false without them (or with
+/// VESICA_FEM_ELEMENT_KERNEL=scalar), and callers then sweep the double matrix.
+class FloatBlockRows {
+ public:
+  /// Builds the block structure (first use or another pattern) and rounds the values.
+  void Update(const SparsePattern& pattern, const Eigen::VectorXd& values);
+  static bool available();
+  int nodes() const { return nodes_; }
+
+ private:
+  friend void BlockGaussSeidelSweep(const FloatBlockRows&, const std::vector<Eigen::Matrix3d>&, const Eigen::VectorXd&,
+                                    Eigen::VectorXd&, bool);
+  friend void ForwardSweepFromZeroAndUpperTimes(const FloatBlockRows&, const std::vector<Eigen::Matrix3d>&,
+                                                const Eigen::VectorXd&, Eigen::VectorXd&, Eigen::VectorXd&);
+  int nodes_ = 0;
+  long nonzeros_ = -1;  // of the pattern the structure was built for
+  std::vector<int> row_begin_, diagonal_block_, column_;
+  std::vector<int> source_;         // per block (i, j): value index of entry (3j, 3i) in the pattern
+  std::vector<int> source_stride_;  // per block: the column stride of node i
+  std::vector<float> values_;
+};
+
+/// BlockGaussSeidelSweep and ForwardSweepFromZeroAndUpperTimes on the float rows (only when
+/// FloatBlockRows::available()).
+void BlockGaussSeidelSweep(const FloatBlockRows& rows, const std::vector<Eigen::Matrix3d>& inverse_diagonal,
+                           const Eigen::VectorXd& b, Eigen::VectorXd& x, bool forward);
+void ForwardSweepFromZeroAndUpperTimes(const FloatBlockRows& rows, const std::vector<Eigen::Matrix3d>& inverse_diagonal,
+                                       const Eigen::VectorXd& b, Eigen::VectorXd& x, Eigen::VectorXd& y);
+
 /// y = A x.
 using MatrixOperator = std::function<void(const Eigen::VectorXd& x, Eigen::VectorXd& y)>;
 

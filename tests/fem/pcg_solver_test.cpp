@@ -120,6 +120,42 @@ TEST(PcgSolverTest, Avx2BlockRowKernelsAreTheDenseProductAndTriangularSolves) {
   }
 }
 
+// The sweeps on the float node-block rows are the block triangular solves of the matrix whose
+// off-diagonal blocks are rounded to float (the diagonal blocks' inverses stay double).
+TEST(PcgSolverTest, FloatBlockRowSweepsAreTheTriangularSolvesOfTheRoundedMatrix) {
+  if (!FloatBlockRows::available()) GTEST_SKIP() << "no AVX2 + FMA (or VESICA_FEM_ELEMENT_KERNEL=scalar)";
+  const SmallSystem sys = MakeSystem();
+  BlockJacobiPreconditioner jacobi;
+  jacobi.Compute(sys.model.pattern, sys.values);
+  FloatBlockRows rows;
+  rows.Update(sys.model.pattern, 0.5 * sys.values);  // structure built, then values replaced
+  rows.Update(sys.model.pattern, sys.values);
+  Eigen::MatrixXd rounded = sys.dense;
+  for (int r = 0; r < rounded.rows(); ++r)
+    for (int c = 0; c < rounded.cols(); ++c)
+      if (r / 3 != c / 3) rounded(r, c) = static_cast<float>(rounded(r, c));
+  EXPECT_GT((rounded - sys.dense).norm(), 0.0);
+  const Eigen::MatrixXd d = BlockPart(sys.dense, 0), l = BlockPart(rounded, -1), u = BlockPart(rounded, 1);
+  const Eigen::VectorXd b = TestVector(sys.model.num_dofs());
+  Eigen::VectorXd x, ux;
+  ForwardSweepFromZeroAndUpperTimes(rows, jacobi.inverse_blocks(), b, x, ux);
+  const Eigen::VectorXd forward = (d + l).partialPivLu().solve(b);
+  EXPECT_LT((x - forward).norm(), 1e-12 * forward.norm());
+  EXPECT_LT((ux - u * forward).norm(), 1e-12 * (u * forward).norm());
+  Eigen::VectorXd sweep = Eigen::VectorXd::Zero(b.size());
+  BlockGaussSeidelSweep(rows, jacobi.inverse_blocks(), b, sweep, true);
+  EXPECT_LT((sweep - forward).norm(), 1e-12 * forward.norm());
+  const Eigen::VectorXd x0 = 0.5 * forward + 1e-3 * TestVector(b.size());
+  Eigen::VectorXd back = x0;
+  BlockGaussSeidelSweep(rows, jacobi.inverse_blocks(), b, back, false);
+  const Eigen::VectorXd backward = x0 + (d + u).partialPivLu().solve(b - (d + l + u) * x0);
+  EXPECT_LT((back - backward).norm(), 1e-12 * backward.norm());
+  // Not the double matrix's sweep (the rounding is seen).
+  Eigen::VectorXd exact = Eigen::VectorXd::Zero(b.size());
+  BlockGaussSeidelSweep(sys.model.pattern, sys.values, jacobi.inverse_blocks(), b, exact, true);
+  EXPECT_GT((sweep - exact).norm(), 1e-14 * exact.norm());
+}
+
 TEST(PcgSolverTest, PcgWithBlockJacobiSolvesTheSystem) {
   const SmallSystem sys = MakeSystem();
   BlockJacobiPreconditioner jacobi;
