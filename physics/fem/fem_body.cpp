@@ -42,7 +42,7 @@ struct FemBody::Workspace {
   std::vector<Eigen::Vector4d> node_quaternions;
   std::vector<Eigen::Matrix3d> node_rotations;
   std::vector<char> node_has_fixed_axis;
-  Eigen::VectorXd rotated_residual, rotated_solution, smoothed_residual, correction;
+  Eigen::VectorXd rotated_residual, rotated_solution, smoothed_residual, correction, sweep_residual;
 };
 
 FemBody::FemBody(std::shared_ptr<const FemModel> model)
@@ -322,20 +322,31 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
         system_times, rhs, du,
         [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
           if (s.rotated_factor_gauss_seidel) {
-            // Forward block Gauss-Seidel sweep (with res - S z = -U z from the same pass), rotated-factor
-            // correction, backward sweep.
-            if (w.float_sweeps)
-              ForwardSweepFromZeroAndUpperTimes(w.float_rows, w.jacobi.inverse_blocks(), res, z, w.smoothed_residual);
-            else
-              ForwardSweepFromZeroAndUpperTimes(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z,
-                                                w.smoothed_residual);
+            // Forward block Gauss-Seidel sweeps (each with its residual -U delta from the same pass:
+            // a sweep from x adds delta = (D + L)^-1 r, and r - S delta = -U delta), rotated-factor
+            // correction, as many backward sweeps.
+            auto forward_from_zero = [&](const Eigen::VectorXd& r_in, Eigen::VectorXd& delta, Eigen::VectorXd& u_delta) {
+              if (w.float_sweeps)
+                ForwardSweepFromZeroAndUpperTimes(w.float_rows, w.jacobi.inverse_blocks(), r_in, delta, u_delta);
+              else
+                ForwardSweepFromZeroAndUpperTimes(m.pattern, w.system_values, w.jacobi.inverse_blocks(), r_in, delta,
+                                                  u_delta);
+            };
+            forward_from_zero(res, z, w.smoothed_residual);
+            for (int sweep = 1; sweep < s.rotated_factor_sweeps; ++sweep) {
+              w.sweep_residual = -w.smoothed_residual;
+              forward_from_zero(w.sweep_residual, w.correction, w.smoothed_residual);
+              z += w.correction;
+            }
             w.smoothed_residual = -w.smoothed_residual;
             apply_rotated_factor(w.smoothed_residual, w.correction);
             z += w.correction;
-            if (w.float_sweeps)
-              BlockGaussSeidelSweep(w.float_rows, w.jacobi.inverse_blocks(), res, z, false);
-            else
-              BlockGaussSeidelSweep(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z, false);
+            for (int sweep = 0; sweep < s.rotated_factor_sweeps; ++sweep) {
+              if (w.float_sweeps)
+                BlockGaussSeidelSweep(w.float_rows, w.jacobi.inverse_blocks(), res, z, false);
+              else
+                BlockGaussSeidelSweep(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z, false);
+            }
           } else {
             apply_rotated_factor(res, z);
           }

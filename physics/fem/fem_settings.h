@@ -69,6 +69,11 @@ struct FemSettings {
   /// sweep on the true system (symmetric multiplicative, still SPD): the sweeps remove the local
   /// error where element rotations differ from their nodes' (a grasped, sheared corner).
   bool rotated_factor_gauss_seidel = false;
+  /// rotated_factor_gauss_seidel: forward sweeps before the rotated factor and backward sweeps after
+  /// it (as many of each; still symmetric). Each forward sweep after the first starts from the
+  /// residual the previous one leaves (-U times its correction, from the same pass). >= 1. On the
+  /// 2,865-node gallbladder 2 sweeps take 6.3 iterations instead of 7.65, at the same step time.
+  int rotated_factor_sweeps = 1;
   /// rotated_factor_gauss_seidel: sweep a float copy of the system matrix stored in node-block rows
   /// (FloatBlockRows: a third of the bytes the sweeps stream; PCG's own products stay double, so the
   /// residual still reaches pcg_relative_tolerance). Needs AVX2 + FMA; the double matrix without.

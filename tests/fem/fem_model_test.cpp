@@ -80,6 +80,9 @@ TEST(FemModelTest, BadMaterialIsAnErrorNamingBodyAndField) {
   s.material.youngs_modulus_Pa = 2300.0;
   s.time_step_s = 0.0;
   EXPECT_NE(message(s).find("time_step_s"), std::string::npos) << message(s);
+  s.time_step_s = 0.01;
+  s.rotated_factor_sweeps = 0;
+  EXPECT_NE(message(s).find("gallbladder: setting rotated_factor_sweeps = 0"), std::string::npos) << message(s);
 }
 
 TEST(FemModelTest, InvertedAndDegenerateTetsAreErrorsNamingBodyAndTet) {
