@@ -25,6 +25,8 @@ void ValidateDissectionSettings(const DissectionSettings& s) {
   Require(s.membrane_touch_radius_m > 0, "membrane_touch_radius_m", "must be > 0");
   Require(s.hook_length_m > 0, "hook_length_m", "must be > 0");
   Require(s.compliance_refresh_steps >= 1, "compliance_refresh_steps", "must be >= 1");
+  Require(s.compliance_adopt_steps >= 0 && s.compliance_adopt_steps < s.compliance_refresh_steps,
+          "compliance_adopt_steps", "must be >= 0 and < compliance_refresh_steps");
 }
 
 Eigen::Vector3d DirectionTowardBed(const TriangleMesh& liver, const TetrahedralMesh& gallbladder) {

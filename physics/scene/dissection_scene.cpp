@@ -59,11 +59,11 @@ DissectionScene::DissectionScene(std::shared_ptr<const DissectionModel> model)
   gallbladder_surface_id_ = caster_.AddSurface(model_->gallbladder_boundary.surface);
   for (int i = 0; i < 2; ++i)
     tips_[static_cast<size_t>(i)] = model_->instruments[static_cast<size_t>(i)].p_RemoteCentre_W;
-  UpdateAttachments();
+  UpdateAttachments(false);
 }
 DissectionScene::~DissectionScene() = default;
 
-void DissectionScene::UpdateAttachments() {
+void DissectionScene::UpdateAttachments(bool in_background) {
   const FemModel& m = *model_->gallbladder;
   Eigen::VectorXd k = Eigen::VectorXd::Zero(m.num_dofs()), c = Eigen::VectorXd::Zero(m.num_dofs());
   const SpringMaterial& spring = model_->settings.springs;
@@ -77,7 +77,12 @@ void DissectionScene::UpdateAttachments() {
     }
   }
   gallbladder_.SetAttachmentStiffness(k, c);
-  gallbladder_compliance_.SetAttachments(k, c);
+  if (in_background && model_->settings.compliance_adopt_steps > 0) {
+    gallbladder_compliance_.BeginAttachments(k, c);
+    compliance_adopt_step_ = steps_ + model_->settings.compliance_adopt_steps;
+  } else {
+    gallbladder_compliance_.SetAttachments(k, c);
+  }
   attachments_changed_ = false;
   steps_since_compliance_ = 0;
 }
@@ -171,7 +176,13 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
   }
 
   // 2. Spring forces at the current state.
-  if (attachments_changed_ && steps_since_compliance_ >= s.compliance_refresh_steps) UpdateAttachments();
+  // Springs cut: their stiffness leaves the implicit system now and the constraint compliance
+  // a few steps later, when its factorisation on the worker thread is adopted.
+  if (compliance_adopt_step_ >= 0 && steps_ >= compliance_adopt_step_) {
+    gallbladder_compliance_.AdoptAttachments();
+    compliance_adopt_step_ = -1;
+  }
+  if (attachments_changed_ && steps_since_compliance_ >= s.compliance_refresh_steps) UpdateAttachments(true);
   ++steps_since_compliance_;
   const TissueNodalForces spring_forces =
       ComputeTissueForces(tissue_, gallbladder_current_, AsVertices(gallbladder_.state().velocity_m_per_s),
@@ -291,7 +302,6 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
   problem.delassus.setZero(m, m);
   problem.soft_compliance.resize(m);
   problem.gap.resize(m);
-  if (attachments_changed_ && m > 0 && steps_since_compliance_ >= s.compliance_refresh_steps) UpdateAttachments();
   for (Eigen::Index a = 0; a < m; ++a) {
     const Row& ra = rows[static_cast<size_t>(a)];
     problem.soft_compliance[a] = ra.soft;

@@ -98,7 +98,9 @@ class DissectionScene {
 
  private:
   struct Row;
-  void UpdateAttachments();
+  // The springs alive now -> the gallbladder's implicit system and the constraint compliance
+  // (on a worker thread when `in_background`, adopted compliance_adopt_steps later).
+  void UpdateAttachments(bool in_background);
   Eigen::Matrix3d BlockCompliance(const Row& a, const Row& b);
 
   std::shared_ptr<const DissectionModel> model_;
@@ -118,6 +120,7 @@ class DissectionScene {
   std::vector<double> grasp_point_forces_;  // |lambda| per grasped point, last step
   bool attachments_changed_ = false;
   int steps_since_compliance_ = 0;
+  long compliance_adopt_step_ = -1;  // step at which the compliance begun on a worker is adopted; -1: none
   double time_s_ = 0;
   long steps_ = 0;
 };

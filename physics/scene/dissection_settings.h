@@ -43,6 +43,10 @@ struct DissectionSettings {
   double hook_length_m = 0.004;            ///< hook from the shaft tip, for the renderer and touch, > 0
   int compliance_refresh_steps =
       20;  ///< refactor the constraint compliance at most this often after springs are cut, >= 1
+  /// The refactorisation runs on a worker thread and is adopted this many steps after it began
+  /// (a fixed step, so replays stay bit-identical; the step waits only if the worker is slower);
+  /// 0: at once, in the step. >= 0, < compliance_refresh_steps.
+  int compliance_adopt_steps = 10;
 };
 
 }  // namespace vesica::physics

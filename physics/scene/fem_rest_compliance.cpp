@@ -1,6 +1,8 @@
 #include "physics/scene/fem_rest_compliance.h"
 
+#include <future>
 #include <string>
+#include <utility>
 
 #include "physics/fem/cholmod_solver.h"
 #include "physics/fem/fem_error.h"
@@ -8,12 +10,49 @@
 
 namespace vesica::physics {
 
+namespace {
+void CheckAttachments(const FemModel& m, const Eigen::VectorXd& k, const Eigen::VectorXd& c) {
+  if (k.size() != m.num_dofs() || c.size() != m.num_dofs() || !k.allFinite() || !c.allFinite() || k.minCoeff() < 0.0 ||
+      c.minCoeff() < 0.0)
+    throw FemError(m.settings.body_name + ": attachment stiffness/damping must be 3 x " +
+                   std::to_string(m.num_nodes()) + " finite entries >= 0");
+}
+
+// S0 = c_M M + c_D D + K0 + attachments, in pattern order, fixed dofs decoupled.
+Eigen::VectorXd RestSystemValues(const FemModel& m, const Eigen::VectorXd& k, const Eigen::VectorXd& c_att) {
+  const FemSettings& s = m.settings;
+  const SystemCoefficients c = IntegratorCoefficients(s);
+  Eigen::VectorXd values = (1.0 + c.damping * s.rayleigh_stiffness_s) * m.linear_stiffness_values;
+  const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;
+  if (m.uses_consistent_mass()) {
+    values += mass_scale * m.consistent_mass_values;
+  } else {
+    for (int i = 0; i < m.num_dofs(); ++i) values[m.pattern.diagonal_slot[i]] += mass_scale * m.lumped_mass_kg[i];
+  }
+  for (int i = 0; i < m.num_dofs(); ++i) values[m.pattern.diagonal_slot[i]] += k[i] + c.damping * c_att[i];
+  for (int slot : m.constrained_slots) values[slot] = 0.0;
+  for (int i : m.fixed_dofs) values[m.pattern.diagonal_slot[i]] = 1.0;
+  return values;
+}
+
+std::unique_ptr<CholmodSolver> FactorizeRestSystem(const FemModel& m, const Eigen::VectorXd& values) {
+  auto solver = std::make_unique<CholmodSolver>();
+  if (!solver->Factorize(m.pattern, values))
+    throw FemError(m.settings.body_name +
+                   ": rest system matrix for the constraint compliance is not positive definite");
+  return solver;
+}
+}  // namespace
+
 struct FemRestCompliance::Impl {
   std::shared_ptr<const FemModel> model;
   Eigen::VectorXd attachment_stiffness, attachment_damping;
-  CholmodSolver cholmod;
+  std::unique_ptr<CholmodSolver> cholmod;  // null until the first factorisation
   bool factor_valid = false;
   std::vector<Eigen::Matrix<double, Eigen::Dynamic, 3>> columns;  // per node; empty = not computed
+  // BeginAttachments: the attachments and the factorisation running on a worker thread.
+  Eigen::VectorXd pending_stiffness, pending_damping;
+  std::future<std::unique_ptr<CholmodSolver>> pending;
 };
 
 FemRestCompliance::FemRestCompliance(std::shared_ptr<const FemModel> model) : impl_(std::make_unique<Impl>()) {
@@ -27,16 +66,39 @@ FemRestCompliance::FemRestCompliance(std::shared_ptr<const FemModel> model) : im
 FemRestCompliance::~FemRestCompliance() = default;
 
 void FemRestCompliance::SetAttachments(const Eigen::VectorXd& k, const Eigen::VectorXd& c) {
-  const FemModel& m = *impl_->model;
-  if (k.size() != m.num_dofs() || c.size() != m.num_dofs() || !k.allFinite() || !c.allFinite() || k.minCoeff() < 0.0 ||
-      c.minCoeff() < 0.0)
-    throw FemError(m.settings.body_name + ": attachment stiffness/damping must be 3 x " +
-                   std::to_string(m.num_nodes()) + " finite entries >= 0");
+  CheckAttachments(*impl_->model, k, c);
+  if (impl_->pending.valid()) impl_->pending.wait();  // its result is superseded
+  impl_->pending = {};
   impl_->attachment_stiffness = k;
   impl_->attachment_damping = c;
   impl_->factor_valid = false;
   for (auto& col : impl_->columns) col.resize(0, 3);
 }
+
+void FemRestCompliance::BeginAttachments(const Eigen::VectorXd& k, const Eigen::VectorXd& c) {
+  CheckAttachments(*impl_->model, k, c);
+  AdoptAttachments();
+  Impl& w = *impl_;
+  w.pending_stiffness = k;
+  w.pending_damping = c;
+  w.pending = std::async(std::launch::async, [model = w.model, values = RestSystemValues(*w.model, k, c)] {
+    return FactorizeRestSystem(*model, values);
+  });
+}
+
+void FemRestCompliance::AdoptAttachments() {
+  Impl& w = *impl_;
+  if (!w.pending.valid()) return;
+  std::unique_ptr<CholmodSolver> solver = w.pending.get();  // rethrows the worker's FemError
+  w.cholmod = std::move(solver);
+  w.attachment_stiffness = std::move(w.pending_stiffness);
+  w.attachment_damping = std::move(w.pending_damping);
+  w.factor_valid = true;
+  ++factorizations_;
+  for (auto& col : w.columns) col.resize(0, 3);
+}
+
+bool FemRestCompliance::attachments_pending() const { return impl_->pending.valid(); }
 
 const Eigen::Matrix<double, Eigen::Dynamic, 3>& FemRestCompliance::NodeColumns(int node) {
   Impl& w = *impl_;
@@ -45,22 +107,7 @@ const Eigen::Matrix<double, Eigen::Dynamic, 3>& FemRestCompliance::NodeColumns(i
     throw FemError(m.settings.body_name + ": compliance asked for node " + std::to_string(node) + " of " +
                    std::to_string(m.num_nodes()));
   if (!w.factor_valid) {
-    const FemSettings& s = m.settings;
-    const SystemCoefficients c = IntegratorCoefficients(s);
-    Eigen::VectorXd values = (1.0 + c.damping * s.rayleigh_stiffness_s) * m.linear_stiffness_values;
-    const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;
-    if (m.uses_consistent_mass()) {
-      values += mass_scale * m.consistent_mass_values;
-    } else {
-      for (int i = 0; i < m.num_dofs(); ++i) values[m.pattern.diagonal_slot[i]] += mass_scale * m.lumped_mass_kg[i];
-    }
-    for (int i = 0; i < m.num_dofs(); ++i)
-      values[m.pattern.diagonal_slot[i]] += w.attachment_stiffness[i] + c.damping * w.attachment_damping[i];
-    for (int k : m.constrained_slots) values[k] = 0.0;
-    for (int i : m.fixed_dofs) values[m.pattern.diagonal_slot[i]] = 1.0;
-    if (!w.cholmod.Factorize(m.pattern, values))
-      throw FemError(m.settings.body_name +
-                     ": rest system matrix for the constraint compliance is not positive definite");
+    w.cholmod = FactorizeRestSystem(m, RestSystemValues(m, w.attachment_stiffness, w.attachment_damping));
     w.factor_valid = true;
     ++factorizations_;
   }
@@ -75,7 +122,7 @@ const Eigen::Matrix<double, Eigen::Dynamic, 3>& FemRestCompliance::NodeColumns(i
         continue;
       }
       e[dof] = 1.0;
-      w.cholmod.Solve(e, x);
+      w.cholmod->Solve(e, x);
       e[dof] = 0.0;
       col.col(axis) = x.cwiseProduct(m.free_dofs);
     }

@@ -24,6 +24,16 @@ class FemRestCompliance {
   /// the factor and the cached columns. Sizes 3n, entries >= 0.
   void SetAttachments(const Eigen::VectorXd& stiffness_N_per_m, const Eigen::VectorXd& damping_Ns_per_m);
 
+  /// SetAttachments without the wait: factorises S0 with the new attachments on a worker thread
+  /// while NodeColumns goes on answering from the current factor until AdoptAttachments(). A
+  /// Begin while one is pending first adopts that one. Throws as SetAttachments for bad sizes.
+  void BeginAttachments(const Eigen::VectorXd& stiffness_N_per_m, const Eigen::VectorXd& damping_Ns_per_m);
+  /// Waits for the factorisation BeginAttachments started (usually long done) and answers from it
+  /// from now on; cached columns start over. Nothing to do when none is pending. Throws FemError
+  /// if that S0 is not positive definite (the current factor then stays).
+  void AdoptAttachments();
+  bool attachments_pending() const;
+
   /// The 3n x 3 block of C for a unit force at `node` (m/N): displacement increments of every
   /// dof. Factorises on first use after a change. Throws FemError if S0 is not positive definite.
   const Eigen::Matrix<double, Eigen::Dynamic, 3>& NodeColumns(int node);
