@@ -7,12 +7,10 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <memory>
-#include <utility>
 #include <vector>
 
 #include "app/render/laparoscope_view.h"
@@ -60,27 +58,16 @@ int main(int argc, char** argv) {
     }
     int png_index = 0;
     double next_png_s = 0;
-    // Wall time of each step (from the end of one callback to the start of the next: the step
-    // alone, not the PNGs): whether the scene keeps up with real time on this machine.
-    using Clock = std::chrono::steady_clock;
-    std::vector<std::pair<double, double>> step_ms;  // (wall ms, session time)
-    Clock::time_point step_began = Clock::now();
     const vesica::app::ReplayOutcome outcome =
         vesica::app::RunReplay(session, input, [&](const vesica::app::DissectionSession& s, const auto& r) {
-          step_ms.emplace_back(std::chrono::duration<double, std::milli>(Clock::now() - step_began).count(),
-                               s.time_s());
-          struct Restart {  // the next step's clock starts when this callback returns
-            Clock::time_point& at;
-            ~Restart() { at = Clock::now(); }
-          } restart{step_began};
           if (trace) {
-            std::fprintf(
-                stderr, "t %.3f ms %.2f rows %d touch %d/%d gap %.2e/%.2e f %.3f/%.3f grasp %d mem %zu cut %d E %.3e\n",
-                s.time_s(), step_ms.back().first, r.physics.constraint_rows,
-                static_cast<int>(r.physics.touches[0].surface), static_cast<int>(r.physics.touches[1].surface),
-                r.physics.touches[0].gap_m, r.physics.touches[1].gap_m, r.physics.tool_force_N[0].norm(),
-                r.physics.tool_force_N[1].norm(), static_cast<int>(s.scene().grasp().state()),
-                r.physics.touches[1].membrane_elements.size(), r.springs_cut, s.scene().Energy());
+            std::fprintf(stderr,
+                         "t %.3f rows %d touch %d/%d gap %.2e/%.2e f %.3f/%.3f grasp %d mem %zu cut %d E %.3e\n",
+                         s.time_s(), r.physics.constraint_rows, static_cast<int>(r.physics.touches[0].surface),
+                         static_cast<int>(r.physics.touches[1].surface), r.physics.touches[0].gap_m,
+                         r.physics.touches[1].gap_m, r.physics.tool_force_N[0].norm(), r.physics.tool_force_N[1].norm(),
+                         static_cast<int>(s.scene().grasp().state()), r.physics.touches[1].membrane_elements.size(),
+                         r.springs_cut, s.scene().Energy());
           }
           if (!view || s.time_s() + 1e-9 < next_png_s) return;
           view->Update(s.MakeRenderFrame());
@@ -107,14 +94,17 @@ int main(int argc, char** argv) {
     std::printf("finite                %s\n", outcome.finite ? "yes" : "no");
     std::printf("max energy            %.6g J\n", outcome.max_energy_J);
     std::printf("rejected fem steps    %ld\n", outcome.rejected_fem_steps);
-    if (!step_ms.empty()) {
-      std::vector<std::pair<double, double>> sorted = step_ms;
+    if (!outcome.step_wall_ms.empty()) {
+      std::vector<double> sorted = outcome.step_wall_ms;
       std::sort(sorted.begin(), sorted.end());
-      const auto at = [&](double q) {
-        return sorted[static_cast<size_t>(q * static_cast<double>(sorted.size() - 1))].first;
+      const auto quantile = [&](double q) {
+        return sorted[static_cast<size_t>(q * static_cast<double>(sorted.size() - 1))];
       };
-      std::printf("step wall time        median %.2f ms, p99 %.2f ms, max %.2f ms (at %.3f s); h = %.1f ms\n", at(0.5),
-                  at(0.99), sorted.back().first, sorted.back().second, 1e3 * model->settings.time_step_s);
+      const auto slowest = std::max_element(outcome.step_wall_ms.begin(), outcome.step_wall_ms.end());
+      std::printf("step wall time        median %.2f ms, p99 %.2f ms, max %.2f ms (step at %.3f s); h = %.1f ms\n",
+                  quantile(0.5), quantile(0.99), *slowest,
+                  static_cast<double>(slowest - outcome.step_wall_ms.begin() + 1) * model->settings.time_step_s,
+                  1e3 * model->settings.time_step_s);
     }
     std::printf("state digest          %s\n", vesica::app::FormatDigest(vesica::app::StateDigest(session)).c_str());
     if (view) std::printf("pngs                  %d in %s\n", png_index, png_dir.c_str());

@@ -1,6 +1,7 @@
 #include "app/replay/session_replay.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace vesica::app {
@@ -10,7 +11,11 @@ ReplayOutcome RunReplay(DissectionSession& session, device::ReplayInput& input, 
   const double h = session.scene().model().settings.time_step_s;
   const long steps = static_cast<long>(std::floor(input.duration_s() / h + 1e-9)) + 1;
   for (long k = 0; k < steps; ++k) {
-    const SessionStepReport r = session.Step(input.Sample(input.start_time_s() + static_cast<double>(k) * h));
+    const device::InputFrame in = input.Sample(input.start_time_s() + static_cast<double>(k) * h);
+    const auto began = std::chrono::steady_clock::now();
+    const SessionStepReport r = session.Step(in);
+    out.step_wall_ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count());
     ++out.steps;
     if (!r.physics.gallbladder_accepted) ++out.rejected_fem_steps;
     const double energy = session.scene().Energy();

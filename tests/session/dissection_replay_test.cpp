@@ -70,6 +70,7 @@ TEST_F(DissectionReplayTest, CommittedRecordingFreesTheGallbladderTwiceBitIdenti
   EXPECT_GT(a.outcome.gallbladder_free_at_s, 0.0);
   EXPECT_LT(a.outcome.max_energy_J, 0.01);
   EXPECT_EQ(a.outcome.rejected_fem_steps, 0);
+  EXPECT_EQ(static_cast<long>(a.outcome.step_wall_ms.size()), a.outcome.steps);  // one time a step
   EXPECT_EQ(a.metrics.springs_cut, a.metrics.springs_total);
   EXPECT_DOUBLE_EQ(a.metrics.tissue_removed_fraction, 1.0);
   EXPECT_TRUE(a.metrics.success);
