@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <future>
 #include <sstream>
 
 #include "physics/fem/attachment_springs.h"
@@ -23,10 +24,10 @@ struct FemBody::Workspace {
   bool acceleration_valid = false;
   bool linear_system_built = false;  // a linear body's S is built once (and after attachment changes)
   AttachmentSprings attachment;
-  Eigen::VectorXd last_increment;           // PCG warm start
-  IncrementExtrapolation extrapolation;     // kRotatedFactorPcg: warm start from the last increments
-  Eigen::VectorXd warm_start_product;       // S times the kRotatedFactorPcg warm start
-  Eigen::VectorXd solution_product;         // S du after a kRotatedFactorPcg solve (b - r)
+  Eigen::VectorXd last_increment;        // PCG warm start
+  IncrementExtrapolation extrapolation;  // kRotatedFactorPcg: warm start from the last increments
+  Eigen::VectorXd warm_start_product;    // S times the kRotatedFactorPcg warm start
+  Eigen::VectorXd solution_product;      // S du after a kRotatedFactorPcg solve (b - r)
   bool solution_product_valid = false;
   std::vector<Eigen::Vector4d> rotations;  // corotational warm start, per tet
   BlockJacobiPreconditioner jacobi;
@@ -38,7 +39,11 @@ struct FemBody::Workspace {
   int steps_since_factor = 0;
   // kRotatedFactorPcg: factor of the rest system and the nodes' rotations (quaternions x y z w
   // and matrices) that turn it into the current frame.
-  CholmodSolver rest_factor;
+  std::unique_ptr<CholmodSolver> rest_factor = std::make_unique<CholmodSolver>();
+  // Attachments changed: the rest factor being computed on a worker, adopted when
+  // steps_until_adopt reaches 0 (settings.rotated_factor_adopt_steps).
+  std::future<std::unique_ptr<CholmodSolver>> pending_rest_factor;
+  int steps_until_adopt = 0;
   std::vector<Eigen::Vector4d> node_quaternions;
   std::vector<Eigen::Matrix3d> node_rotations;
   std::vector<char> node_has_fixed_axis;
@@ -99,6 +104,23 @@ void FemBody::SetAttachmentStiffness(const Eigen::VectorXd& stiffness, const Eig
   w.system_assembled = false;
   w.linear_system_built = false;
   w.factor_matches_system = false;
+  const FemSettings& s = model_->settings;
+  if (s.solver == LinearSolverKind::kRotatedFactorPcg && s.rotated_factor_adopt_steps > 0 &&
+      w.rest_factor->factorized()) {
+    if (w.pending_rest_factor.valid()) w.pending_rest_factor.wait();  // superseded
+    Eigen::VectorXd rest_system;
+    SystemValuesFromTangent(model_->linear_stiffness_values, rest_system);
+    w.pending_rest_factor = std::async(
+        std::launch::async, [model = model_, values = std::move(rest_system)]() -> std::unique_ptr<CholmodSolver> {
+          auto factor = std::make_unique<CholmodSolver>();
+          if (!factor->Factorize(model->pattern, values, model->settings.rotated_factor_single_precision,
+                                 model->settings.rotated_factor_half_precision))
+            return nullptr;
+          return factor;
+        });
+    w.steps_until_adopt = s.rotated_factor_adopt_steps;
+    return;
+  }
   w.force_refactor = true;
 }
 
@@ -273,11 +295,11 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
         m.pattern, w.system_values, rhs, du,
         [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { w.cholmod.Solve(res, z); }, tolerance, max_iterations);
   } else if (s.solver == LinearSolverKind::kRotatedFactorPcg) {
-    if (!w.rest_factor.factorized() || w.force_refactor) {
+    if (!w.rest_factor->factorized() || w.force_refactor) {
       Eigen::VectorXd rest_system;
       SystemValuesFromTangent(m.linear_stiffness_values, rest_system);
-      if (!w.rest_factor.Factorize(m.pattern, rest_system, s.rotated_factor_single_precision,
-                                   s.rotated_factor_half_precision))
+      if (!w.rest_factor->Factorize(m.pattern, rest_system, s.rotated_factor_single_precision,
+                                    s.rotated_factor_half_precision))
         return false;
       w.force_refactor = false;
     }
@@ -292,9 +314,9 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
       for (int n = 0; n < nodes; ++n)
         w.rotated_residual.segment<3>(3 * n) = w.node_rotations[n].transpose() * res.segment<3>(3 * n);
       if (s.rotated_factor_single_precision)
-        w.rest_factor.SolveSinglePrecision(w.rotated_residual, w.rotated_solution);
+        w.rest_factor->SolveSinglePrecision(w.rotated_residual, w.rotated_solution);
       else
-        w.rest_factor.Solve(w.rotated_residual, w.rotated_solution);
+        w.rest_factor->Solve(w.rotated_residual, w.rotated_solution);
       z.resize(res.size());
       for (int n = 0; n < nodes; ++n) z.segment<3>(3 * n) = w.node_rotations[n] * w.rotated_solution.segment<3>(3 * n);
     };
@@ -325,7 +347,8 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
             // Forward block Gauss-Seidel sweeps (each with its residual -U delta from the same pass:
             // a sweep from x adds delta = (D + L)^-1 r, and r - S delta = -U delta), rotated-factor
             // correction, as many backward sweeps.
-            auto forward_from_zero = [&](const Eigen::VectorXd& r_in, Eigen::VectorXd& delta, Eigen::VectorXd& u_delta) {
+            auto forward_from_zero = [&](const Eigen::VectorXd& r_in, Eigen::VectorXd& delta,
+                                         Eigen::VectorXd& u_delta) {
               if (w.float_sweeps)
                 ForwardSweepFromZeroAndUpperTimes(w.float_rows, w.jacobi.inverse_blocks(), r_in, delta, u_delta);
               else
@@ -416,6 +439,13 @@ StepReport FemBody::Step() {
     return report;
   };
 
+  if (w.pending_rest_factor.valid() && --w.steps_until_adopt <= 0) {
+    std::unique_ptr<CholmodSolver> factor = w.pending_rest_factor.get();
+    if (factor)
+      w.rest_factor = std::move(factor);
+    else
+      w.force_refactor = true;  // not positive definite: the solve refactorises, fails and rejects the step
+  }
   Eigen::VectorXd du;
   if (!SolveSystem(rhs, du, s.pcg_relative_tolerance, s.pcg_max_iterations, &report))
     return reject(rhs.allFinite() ? "the linear solve failed (system not positive definite or non-finite)"
@@ -458,8 +488,11 @@ double FemBody::KineticEnergy() const {
 }
 
 double FemBody::ElasticEnergy() const {
+  // Rotations warm-started from the last step's (a copy: this is const) and the steps' kernel:
+  // without a cache every tet takes the SVD, which costs as much as a whole step.
+  std::vector<Eigen::Vector4d> rotations = work_->rotations;
   Eigen::VectorXd f;
-  return ComputeElasticForces(*model_, state_.displacement_m, nullptr, &f);
+  return ComputeElasticForces(*model_, state_.displacement_m, nullptr, &f, &rotations);
 }
 
 PointCompliance FemBody::Compliance(const std::vector<TetLocation>& points) {

@@ -21,13 +21,13 @@ void ValidateSettings(const FemSettings& s) {
   check(std::isfinite(s.rayleigh_stiffness_s) && s.rayleigh_stiffness_s >= 0.0, "rayleigh_stiffness_s",
         s.rayleigh_stiffness_s, ">= 0");
   check(s.newmark_beta > 0.0 && s.newmark_beta <= 0.5, "newmark_beta", s.newmark_beta, "0 < beta <= 0.5");
-  check(s.newmark_gamma >= 0.5 && s.newmark_gamma <= 1.0, "newmark_gamma", s.newmark_gamma,
-        "0.5 <= gamma <= 1");
+  check(s.newmark_gamma >= 0.5 && s.newmark_gamma <= 1.0, "newmark_gamma", s.newmark_gamma, "0.5 <= gamma <= 1");
   check(s.pcg_relative_tolerance > 0.0 && s.pcg_relative_tolerance < 1.0, "pcg_relative_tolerance",
         s.pcg_relative_tolerance, "0 < tol < 1");
   check(s.pcg_max_iterations >= 1, "pcg_max_iterations", s.pcg_max_iterations, ">= 1");
   check(s.cholmod_refresh_steps >= 1, "cholmod_refresh_steps", s.cholmod_refresh_steps, ">= 1");
   check(s.rotated_factor_sweeps >= 1, "rotated_factor_sweeps", s.rotated_factor_sweeps, ">= 1");
+  check(s.rotated_factor_adopt_steps >= 0, "rotated_factor_adopt_steps", s.rotated_factor_adopt_steps, ">= 0");
   check(s.max_energy_growth >= 1.0, "max_energy_growth", s.max_energy_growth, ">= 1");
   check(s.energy_floor_J >= 0.0, "energy_floor_J", s.energy_floor_J, ">= 0");
 }

@@ -46,11 +46,11 @@ struct FemSettings {
   TimeIntegrator integrator = TimeIntegrator::kBackwardEuler;
   LinearSolverKind solver = LinearSolverKind::kCholmod;
 
-  double time_step_s = 1e-2;             ///< h, s; > 0
-  double rayleigh_mass_per_s = 0.0;      ///< alpha in D = alpha M + beta K, 1/s; >= 0
-  double rayleigh_stiffness_s = 0.0;     ///< beta in D = alpha M + beta K, s; >= 0
-  double newmark_beta = 0.25;            ///< 0 < beta <= 0.5
-  double newmark_gamma = 0.5;            ///< 0.5 <= gamma <= 1
+  double time_step_s = 1e-2;          ///< h, s; > 0
+  double rayleigh_mass_per_s = 0.0;   ///< alpha in D = alpha M + beta K, 1/s; >= 0
+  double rayleigh_stiffness_s = 0.0;  ///< beta in D = alpha M + beta K, s; >= 0
+  double newmark_beta = 0.25;         ///< 0 < beta <= 0.5
+  double newmark_gamma = 0.5;         ///< 0.5 <= gamma <= 1
 
   double pcg_relative_tolerance = 1e-8;  ///< stop when |r| <= tol |b| (paper: 1e-8)
   int pcg_max_iterations = 20;           ///< paper: 20
@@ -74,6 +74,13 @@ struct FemSettings {
   /// residual the previous one leaves (-U times its correction, from the same pass). >= 1. On the
   /// 2,865-node gallbladder 2 sweeps take 6.3 iterations instead of 7.65, at the same step time.
   int rotated_factor_sweeps = 1;
+  /// kRotatedFactorPcg, attachments changed (connective tissue cut) after the first step: the rest
+  /// factor is refactorised on a worker thread and adopted this many steps later (a fixed step, so
+  /// runs stay bit-identical); meanwhile the old factor preconditions the new system (a few more
+  /// iterations after a spring cut; a change as large as the springs themselves can need more than
+  /// pcg_max_iterations). A factorisation costs ~30 ms at 1,000 nodes: in the step, it stalls a
+  /// real-time scene. 0: refactorise in the next step. >= 0.
+  int rotated_factor_adopt_steps = 15;
   /// rotated_factor_gauss_seidel: sweep a float copy of the system matrix stored in node-block rows
   /// (FloatBlockRows: a third of the bytes the sweeps stream; PCG's own products stay double, so the
   /// residual still reaches pcg_relative_tolerance). Needs AVX2 + FMA; the double matrix without.

@@ -20,8 +20,8 @@ using testing::NodesOnPlane;
 // A small clamped block whose modes are computed densely (the reference for the integrators).
 struct ModalBlock {
   std::shared_ptr<const FemModel> model;
-  double omega = 0.0;     // first natural frequency, rad/s
-  Eigen::VectorXd mode;   // 3n, M-normalised, zero at fixed dofs
+  double omega = 0.0;    // first natural frequency, rad/s
+  Eigen::VectorXd mode;  // 3n, M-normalised, zero at fixed dofs
 };
 
 ModalBlock MakeModalBlock(TimeIntegrator integrator, double steps_per_period) {
@@ -238,9 +238,11 @@ TEST(FemBodyTest, RotatedFactorPcgFollowsTheExactStepsOfATwistedPulledBody) {
         "twisted body (free end turned %.2f rad, max |u| %.4f m): rotated-factor PCG%s %.1f iterations per step, "
         "max residual %.2e, max difference from exact %.2e m\n",
         max_twist_rad, max_displacement,
-        k == 2 ? " + Gauss-Seidel" : k == 3 ? " + Gauss-Seidel (double)" : k == 4 ? " + 2 Gauss-Seidel sweeps" : "",
-        mean_iterations[k], max_residual[k],
-        max_difference);
+        k == 2   ? " + Gauss-Seidel"
+        : k == 3 ? " + Gauss-Seidel (double)"
+        : k == 4 ? " + 2 Gauss-Seidel sweeps"
+                 : "",
+        mean_iterations[k], max_residual[k], max_difference);
     EXPECT_LE(max_residual[k], 1e-10);
     EXPECT_LT(mean_iterations[k], 30.0);
     EXPECT_LT(max_difference, 1e-6 * max_displacement);
@@ -371,6 +373,7 @@ TEST(FemBodyTest, RotatedFactorPcgSolvesALinearBodyInOneIterationWithAttachments
     s.rotated_factor_single_precision = single;
     s.rotated_factor_half_precision = precision == 2;
     s.pcg_relative_tolerance = 1e-12;
+    s.rotated_factor_adopt_steps = 0;  // rebuilt in the next step (the background path: below)
     auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
     FemBody body(model);
     body.SetExternalForces(model->GravityForces({0, 0, -9.81}));
@@ -386,6 +389,79 @@ TEST(FemBodyTest, RotatedFactorPcgSolvesALinearBodyInOneIterationWithAttachments
     EXPECT_LE(r.solver_iterations, expected_iterations) << "precision " << precision;
     EXPECT_LE(r.relative_residual, 1e-12);
   }
+}
+
+// Springs cut mid-run (rotated_factor_adopt_steps > 0): the rest factor is rebuilt on a worker and
+// adopted that many steps later. Until then the old factor preconditions the new system (more
+// iterations, same tolerance); from the adopting step on, a linear body solves in one iteration
+// again; every step equals the one of a body that rebuilds at once.
+TEST(FemBodyTest, RotatedFactorRebuiltInTheBackgroundIsAdoptedAfterTheSetSteps) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {8, 3, 3});
+  constexpr int kAdopt = 4;
+  std::vector<Eigen::VectorXd> trajectory[2];
+  std::vector<int> iterations[2];
+  for (int run = 0; run < 2; ++run) {
+    FemSettings s;
+    s.element_model = ElementModel::kLinear;
+    s.solver = LinearSolverKind::kRotatedFactorPcg;
+    s.rotated_factor_single_precision = false;  // a linear body then solves in exactly one iteration
+    s.pcg_relative_tolerance = 1e-12;
+    s.pcg_max_iterations = 200;
+    s.rotated_factor_adopt_steps = run == 0 ? 0 : kAdopt;
+    auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
+    const int n = model->num_dofs();
+    Eigen::VectorXd k = Eigen::VectorXd::Zero(n), d = Eigen::VectorXd::Zero(n);
+    for (int v : NodesOnPlane(mesh, 2, 0.03))
+      k.segment<3>(3 * v).setConstant(20.0), d.segment<3>(3 * v).setConstant(0.05);
+    FemBody body(model);
+    body.SetAttachmentStiffness(k, d);
+    body.SetExternalForces(model->GravityForces({0, 0, -9.81}));
+    for (int step = 0; step < 12; ++step) {
+      if (step == 3) {  // cut the springs on the far half of the top
+        for (int v : NodesOnPlane(mesh, 2, 0.03))
+          if (mesh.vertices(v, 0) > 0.04) k.segment<3>(3 * v).setZero(), d.segment<3>(3 * v).setZero();
+        body.SetAttachmentStiffness(k, d);
+      }
+      const StepReport r = body.Step();
+      ASSERT_TRUE(r.accepted) << r.rejection_reason;
+      EXPECT_LE(r.relative_residual, 1e-12) << "run " << run << " step " << step;
+      trajectory[run].push_back(body.state().displacement_m);
+      iterations[run].push_back(r.solver_iterations);
+    }
+  }
+  for (int step = 0; step < 12; ++step) {
+    EXPECT_EQ(iterations[0][static_cast<size_t>(step)], 1) << step;  // the factor is always the system's
+    const bool stale = step >= 3 && step < 3 + kAdopt - 1;           // the adopting step is the kAdopt-th after the cut
+    if (stale)
+      EXPECT_GT(iterations[1][static_cast<size_t>(step)], 1) << step;
+    else
+      EXPECT_EQ(iterations[1][static_cast<size_t>(step)], 1) << step;
+    EXPECT_LT((trajectory[1][static_cast<size_t>(step)] - trajectory[0][static_cast<size_t>(step)]).norm(),
+              1e-9 * trajectory[0][static_cast<size_t>(step)].norm())
+        << step;
+  }
+}
+
+// ElasticEnergy warm-starts the rotations from the last step (the SVD of every tet costs a step):
+// the same energy as the cold SVD pass, on a body turned and stretched well away from rest.
+TEST(FemBodyTest, ElasticEnergyMatchesTheColdSvdPass) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {8, 3, 3});
+  FemSettings s;
+  s.element_model = ElementModel::kCorotational;
+  s.solver = LinearSolverKind::kRotatedFactorPcg;
+  s.material = {2300.0, 0.45, 1000.0};
+  s.pcg_max_iterations = 200;
+  auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
+  FemBody body(model);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(model->num_dofs());
+  for (int v : NodesOnPlane(mesh, 0, 0.08)) f.segment<3>(3 * v) = Eigen::Vector3d(0.02, 0.0, -0.05);
+  body.SetExternalForces(f);
+  for (int step = 0; step < 30; ++step) ASSERT_TRUE(body.Step().accepted);
+  ASSERT_GT(body.state().displacement_m.cwiseAbs().maxCoeff(), 0.01);  // a large bend
+  Eigen::VectorXd force;
+  const double cold = ComputeElasticForces(*model, body.state().displacement_m, nullptr, &force);
+  EXPECT_GT(cold, 0.0);
+  EXPECT_NEAR(body.ElasticEnergy(), cold, 1e-12 * cold);
 }
 
 // The matrix-free rotated-factor solver (the tangent applied element by element, the default
@@ -544,7 +620,8 @@ TEST(FemBodyTest, ComplianceGivesThePointResponseOfAStep) {
   lambda << 0.01, -0.02, 0.03, 0.0, 0.01, -0.01;
   Eigen::VectorXd jt_lambda = Eigen::VectorXd::Zero(model->num_dofs());
   for (int p = 0; p < 2; ++p)
-    for (int k = 0; k < 4; ++k) jt_lambda.segment<3>(3 * mesh.tets(points[p].tet, k)) += points[p].weights[k] * lambda.segment<3>(3 * p);
+    for (int k = 0; k < 4; ++k)
+      jt_lambda.segment<3>(3 * mesh.tets(points[p].tet, k)) += points[p].weights[k] * lambda.segment<3>(3 * p);
   pushed_body.SetExternalForces(jt_lambda);
   ASSERT_TRUE(free_body.Step().accepted);
   ASSERT_TRUE(pushed_body.Step().accepted);
@@ -552,7 +629,8 @@ TEST(FemBodyTest, ComplianceGivesThePointResponseOfAStep) {
   Eigen::VectorXd point_motion(6);
   for (int p = 0; p < 2; ++p) {
     point_motion.segment<3>(3 * p).setZero();
-    for (int k = 0; k < 4; ++k) point_motion.segment<3>(3 * p) += points[p].weights[k] * diff.segment<3>(3 * mesh.tets(points[p].tet, k));
+    for (int k = 0; k < 4; ++k)
+      point_motion.segment<3>(3 * p) += points[p].weights[k] * diff.segment<3>(3 * mesh.tets(points[p].tet, k));
   }
   EXPECT_LT((point_motion - c.delassus * lambda).norm(), 1e-9 * point_motion.norm());
   EXPECT_LT((diff - c.response * lambda).norm(), 1e-9 * diff.norm());
@@ -593,7 +671,8 @@ TEST(FemBodyTest, NonFiniteOrMissizedInputIsRejectedAtTheDoor) {
     body.SetExternalForces(f);
     FAIL() << "expected FemError";
   } catch (const FemError& e) {
-    EXPECT_NE(std::string(e.what()).find("gallbladder: external force of node 2 (axis 1) is not finite"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("gallbladder: external force of node 2 (axis 1) is not finite"),
+              std::string::npos)
         << e.what();
   }
   EXPECT_THROW(body.SetState(Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3)), FemError);

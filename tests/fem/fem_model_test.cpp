@@ -83,6 +83,9 @@ TEST(FemModelTest, BadMaterialIsAnErrorNamingBodyAndField) {
   s.time_step_s = 0.01;
   s.rotated_factor_sweeps = 0;
   EXPECT_NE(message(s).find("gallbladder: setting rotated_factor_sweeps = 0"), std::string::npos) << message(s);
+  s.rotated_factor_sweeps = 1;
+  s.rotated_factor_adopt_steps = -1;
+  EXPECT_NE(message(s).find("gallbladder: setting rotated_factor_adopt_steps = -1"), std::string::npos) << message(s);
 }
 
 TEST(FemModelTest, InvertedAndDegenerateTetsAreErrorsNamingBodyAndTet) {
