@@ -7,10 +7,12 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <thread>
 #include <vector>
 
 #include "app/render/laparoscope_view.h"
@@ -29,6 +31,8 @@ int main(int argc, char** argv) {
   double png_every_s = 0.5;
   int width = 640, height = 360;
   bool trace = false;
+  double slow_step_ms = 0;
+  bool real_time = false;
   cli.add_option("recording", recording_path, "input recording (docs/recording.md)")->required();
   cli.add_option("-s,--scenario", scenario_path, "scenario file (TOML)")->capture_default_str();
   cli.add_option("--png-dir", png_dir, "write the laparoscope view as PNGs into this folder");
@@ -38,6 +42,10 @@ int main(int argc, char** argv) {
   cli.add_option("--width", width, "PNG width in pixels")->check(CLI::Range(64, 4096));
   cli.add_option("--height", height, "PNG height in pixels")->check(CLI::Range(64, 4096));
   cli.add_flag("--trace", trace, "print one line per physics step (contacts, forces, energy) to stderr");
+  cli.add_flag("--real-time", real_time,
+               "pace the steps to the clock as the trainer does (background work then gets the time it has there)");
+  cli.add_option("--slow-steps", slow_step_ms, "list the steps whose wall time exceeds this many ms (to stderr)")
+      ->check(CLI::PositiveNumber);
   CLI11_PARSE(cli, argc, argv);
 
   try {
@@ -58,16 +66,20 @@ int main(int argc, char** argv) {
     }
     int png_index = 0;
     double next_png_s = 0;
+    const auto paced_from = std::chrono::steady_clock::now();
     const vesica::app::ReplayOutcome outcome =
         vesica::app::RunReplay(session, input, [&](const vesica::app::DissectionSession& s, const auto& r) {
+          if (real_time)
+            std::this_thread::sleep_until(paced_from + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                           std::chrono::duration<double>(s.time_s())));
           if (trace) {
             std::fprintf(stderr,
-                         "t %.3f rows %d touch %d/%d gap %.2e/%.2e f %.3f/%.3f grasp %d mem %zu cut %d E %.3e\n",
-                         s.time_s(), r.physics.constraint_rows, static_cast<int>(r.physics.touches[0].surface),
-                         static_cast<int>(r.physics.touches[1].surface), r.physics.touches[0].gap_m,
-                         r.physics.touches[1].gap_m, r.physics.tool_force_N[0].norm(), r.physics.tool_force_N[1].norm(),
-                         static_cast<int>(s.scene().grasp().state()), r.physics.touches[1].membrane_elements.size(),
-                         r.springs_cut, s.scene().Energy());
+                         "t %.3f it %d rows %d touch %d/%d gap %.2e/%.2e f %.3f/%.3f grasp %d mem %zu cut %d E %.3e\n",
+                         s.time_s(), r.physics.gallbladder_solver_iterations, r.physics.constraint_rows,
+                         static_cast<int>(r.physics.touches[0].surface), static_cast<int>(r.physics.touches[1].surface),
+                         r.physics.touches[0].gap_m, r.physics.touches[1].gap_m, r.physics.tool_force_N[0].norm(),
+                         r.physics.tool_force_N[1].norm(), static_cast<int>(s.scene().grasp().state()),
+                         r.physics.touches[1].membrane_elements.size(), r.springs_cut, s.scene().Energy());
           }
           if (!view || s.time_s() + 1e-9 < next_png_s) return;
           view->Update(s.MakeRenderFrame());
@@ -94,6 +106,11 @@ int main(int argc, char** argv) {
     std::printf("finite                %s\n", outcome.finite ? "yes" : "no");
     std::printf("max energy            %.6g J\n", outcome.max_energy_J);
     std::printf("rejected fem steps    %ld\n", outcome.rejected_fem_steps);
+    if (slow_step_ms > 0)
+      for (size_t k = 0; k < outcome.step_wall_ms.size(); ++k)
+        if (outcome.step_wall_ms[k] > slow_step_ms)
+          std::fprintf(stderr, "slow step at %.3f s: %.2f ms\n",
+                       static_cast<double>(k + 1) * model->settings.time_step_s, outcome.step_wall_ms[k]);
     if (!outcome.step_wall_ms.empty()) {
       std::vector<double> sorted = outcome.step_wall_ms;
       std::sort(sorted.begin(), sorted.end());

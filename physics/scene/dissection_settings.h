@@ -46,7 +46,7 @@ struct DissectionSettings {
   /// The refactorisation runs on a worker thread and is adopted this many steps after it began
   /// (a fixed step, so replays stay bit-identical; the step waits only if the worker is slower);
   /// 0: at once, in the step. >= 0, < compliance_refresh_steps.
-  int compliance_adopt_steps = 10;
+  int compliance_adopt_steps = 15;
 };
 
 }  // namespace vesica::physics

@@ -1,8 +1,10 @@
 #include "physics/scene/fem_rest_compliance.h"
 
+#include <algorithm>
 #include <future>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "physics/fem/cholmod_solver.h"
 #include "physics/fem/fem_error.h"
@@ -42,6 +44,32 @@ std::unique_ptr<CholmodSolver> FactorizeRestSystem(const FemModel& m, const Eige
                    ": rest system matrix for the constraint compliance is not positive definite");
   return solver;
 }
+using NodeBlock = Eigen::Matrix<double, Eigen::Dynamic, 3>;
+
+// Column block of S0^-1 for unit forces on the node's three dofs (fixed dofs: zero).
+NodeBlock SolveNodeColumns(const FemModel& m, const CholmodSolver& cholmod, int node) {
+  NodeBlock col(m.num_dofs(), 3);
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(m.num_dofs()), x;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int dof = 3 * node + axis;
+    if (m.free_dofs[dof] == 0.0) {  // a fixed dof does not move under any force
+      col.col(axis).setZero();
+      continue;
+    }
+    e[dof] = 1.0;
+    cholmod.Solve(e, x);
+    e[dof] = 0.0;
+    col.col(axis) = x.cwiseProduct(m.free_dofs);
+  }
+  return col;
+}
+
+// What the worker of BeginAttachments hands back: the factor and the columns of the nodes asked
+// for since the Begin before (the grasped tet, the hook's contact: usually still in use).
+struct Refactored {
+  std::unique_ptr<CholmodSolver> cholmod;
+  std::vector<std::pair<int, NodeBlock>> columns;
+};
 }  // namespace
 
 struct FemRestCompliance::Impl {
@@ -49,10 +77,11 @@ struct FemRestCompliance::Impl {
   Eigen::VectorXd attachment_stiffness, attachment_damping;
   std::unique_ptr<CholmodSolver> cholmod;  // null until the first factorisation
   bool factor_valid = false;
-  std::vector<Eigen::Matrix<double, Eigen::Dynamic, 3>> columns;  // per node; empty = not computed
+  std::vector<NodeBlock> columns;  // per node; empty = not computed
+  std::vector<char> asked;         // per node: columns asked for since the last BeginAttachments
   // BeginAttachments: the attachments and the factorisation running on a worker thread.
   Eigen::VectorXd pending_stiffness, pending_damping;
-  std::future<std::unique_ptr<CholmodSolver>> pending;
+  std::future<Refactored> pending;
 };
 
 FemRestCompliance::FemRestCompliance(std::shared_ptr<const FemModel> model) : impl_(std::make_unique<Impl>()) {
@@ -62,6 +91,7 @@ FemRestCompliance::FemRestCompliance(std::shared_ptr<const FemModel> model) : im
   impl_->attachment_stiffness.setZero(n);
   impl_->attachment_damping.setZero(n);
   impl_->columns.resize(static_cast<size_t>(impl_->model->num_nodes()));
+  impl_->asked.assign(static_cast<size_t>(impl_->model->num_nodes()), 0);
 }
 FemRestCompliance::~FemRestCompliance() = default;
 
@@ -71,8 +101,12 @@ void FemRestCompliance::SetAttachments(const Eigen::VectorXd& k, const Eigen::Ve
   impl_->pending = {};
   impl_->attachment_stiffness = k;
   impl_->attachment_damping = c;
-  impl_->factor_valid = false;
   for (auto& col : impl_->columns) col.resize(0, 3);
+  // Now rather than at the first constraint: a scene sets its attachments before it runs, and the
+  // ~30 ms then stay out of the step that grasps first.
+  impl_->cholmod = FactorizeRestSystem(*impl_->model, RestSystemValues(*impl_->model, k, c));
+  impl_->factor_valid = true;
+  ++factorizations_;
 }
 
 void FemRestCompliance::BeginAttachments(const Eigen::VectorXd& k, const Eigen::VectorXd& c) {
@@ -81,21 +115,29 @@ void FemRestCompliance::BeginAttachments(const Eigen::VectorXd& k, const Eigen::
   Impl& w = *impl_;
   w.pending_stiffness = k;
   w.pending_damping = c;
-  w.pending = std::async(std::launch::async, [model = w.model, values = RestSystemValues(*w.model, k, c)] {
-    return FactorizeRestSystem(*model, values);
+  // The nodes constraints asked for lately (not every node ever cached: that list only grows).
+  std::vector<int> in_use;
+  for (size_t node = 0; node < w.asked.size(); ++node)
+    if (w.asked[node]) in_use.push_back(static_cast<int>(node));
+  std::fill(w.asked.begin(), w.asked.end(), 0);
+  w.pending = std::async(std::launch::async, [model = w.model, values = RestSystemValues(*w.model, k, c), in_use] {
+    Refactored out{FactorizeRestSystem(*model, values), {}};
+    for (int node : in_use) out.columns.emplace_back(node, SolveNodeColumns(*model, *out.cholmod, node));
+    return out;
   });
 }
 
 void FemRestCompliance::AdoptAttachments() {
   Impl& w = *impl_;
   if (!w.pending.valid()) return;
-  std::unique_ptr<CholmodSolver> solver = w.pending.get();  // rethrows the worker's FemError
-  w.cholmod = std::move(solver);
+  Refactored done = w.pending.get();  // rethrows the worker's FemError
+  w.cholmod = std::move(done.cholmod);
   w.attachment_stiffness = std::move(w.pending_stiffness);
   w.attachment_damping = std::move(w.pending_damping);
   w.factor_valid = true;
   ++factorizations_;
   for (auto& col : w.columns) col.resize(0, 3);
+  for (auto& [node, col] : done.columns) w.columns[static_cast<size_t>(node)] = std::move(col);
 }
 
 bool FemRestCompliance::attachments_pending() const { return impl_->pending.valid(); }
@@ -111,22 +153,9 @@ const Eigen::Matrix<double, Eigen::Dynamic, 3>& FemRestCompliance::NodeColumns(i
     w.factor_valid = true;
     ++factorizations_;
   }
+  w.asked[static_cast<size_t>(node)] = 1;
   auto& col = w.columns[static_cast<size_t>(node)];
-  if (col.rows() == 0) {
-    col.resize(m.num_dofs(), 3);
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(m.num_dofs()), x;
-    for (int axis = 0; axis < 3; ++axis) {
-      const int dof = 3 * node + axis;
-      if (m.free_dofs[dof] == 0.0) {  // a fixed dof does not move under any force
-        col.col(axis).setZero();
-        continue;
-      }
-      e[dof] = 1.0;
-      w.cholmod->Solve(e, x);
-      e[dof] = 0.0;
-      col.col(axis) = x.cwiseProduct(m.free_dofs);
-    }
-  }
+  if (col.rows() == 0) col = SolveNodeColumns(m, *w.cholmod, node);
   return col;
 }
 

@@ -20,8 +20,9 @@ class FemRestCompliance {
   explicit FemRestCompliance(std::shared_ptr<const FemModel> model);
   ~FemRestCompliance();
 
-  /// Per-dof attachment stiffness and damping (as FemBody::SetAttachmentStiffness); invalidates
-  /// the factor and the cached columns. Sizes 3n, entries >= 0.
+  /// Per-dof attachment stiffness and damping (as FemBody::SetAttachmentStiffness); factorises S0
+  /// with them now and drops the cached columns. Sizes 3n, entries >= 0. Throws FemError if S0
+  /// is not positive definite.
   void SetAttachments(const Eigen::VectorXd& stiffness_N_per_m, const Eigen::VectorXd& damping_Ns_per_m);
 
   /// SetAttachments without the wait: factorises S0 with the new attachments on a worker thread

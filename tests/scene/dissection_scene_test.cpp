@@ -322,6 +322,14 @@ TEST(DissectionModelTest, BadSettingsAndMissingBedAreNamed) {
     EXPECT_NE(std::string(e.what()).find("time_step_s"), std::string::npos) << e.what();
   }
   in = testing::SyntheticDissectionInputs();
+  in.settings.compliance_adopt_steps = in.settings.compliance_refresh_steps;  // would overlap the next refresh
+  try {
+    BuildDissectionModel(in);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("compliance_adopt_steps"), std::string::npos) << e.what();
+  }
+  in = testing::SyntheticDissectionInputs();
   in.liver_surface.vertex_labels = in.liver_surface.vertex_labels.unaryExpr([](int l) { return l & kLabelFixed; });
   EXPECT_THROW(BuildDissectionModel(in), std::invalid_argument);
   in = testing::SyntheticDissectionInputs();
