@@ -153,23 +153,30 @@ ElementKernel EnvironmentKernel() {
   return ElementKernel::kAuto;
 }
 
-double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eigen::VectorXd& u,
-                              Eigen::VectorXd* tangent, Eigen::VectorXd* force, std::vector<Eigen::Vector4d>& cache) {
-  if (static_cast<int>(cache.size()) != m.rest_mesh.num_tets()) cache.assign(m.rest_mesh.num_tets(), Eigen::Vector4d(0, 0, 0, 1));
-  force->setZero(u.size());
-  if (tangent) tangent->setZero(m.pattern.structure.nonZeros());
+// The SIMD kernels' view of the model's element batches, for the vector x and output y.
+ElementPassArgs BatchArgs(const FemModel& m, const Eigen::VectorXd& x, double* rotation_cache, double* y) {
   ElementPassArgs args;
   args.rest = m.element_batches.rest.data();
   args.dofs = m.element_batches.dofs.data();
   args.num_tets = m.element_batches.num_tets;
   args.lambda_Pa = m.lame_lambda_Pa;
   args.mu_Pa = m.lame_mu_Pa;
-  args.displacement = u.data();
-  args.rotation_cache = cache.data()->data();  // Vector4d: 4 packed doubles
-  args.force = force->data();
-  args.tangent = tangent ? tangent->data() : nullptr;
+  args.displacement = x.data();
+  args.rotation_cache = rotation_cache;
+  args.force = y;
   args.block_slot = m.pattern.block_slot.data()->data();
   args.column_stride = m.pattern.column_stride.data();
+  return args;
+}
+
+double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eigen::VectorXd& u,
+                              Eigen::VectorXd* tangent, Eigen::VectorXd* force, std::vector<Eigen::Vector4d>& cache) {
+  if (static_cast<int>(cache.size()) != m.rest_mesh.num_tets())
+    cache.assign(m.rest_mesh.num_tets(), Eigen::Vector4d(0, 0, 0, 1));
+  force->setZero(u.size());
+  if (tangent) tangent->setZero(m.pattern.structure.nonZeros());
+  ElementPassArgs args = BatchArgs(m, u, cache.data()->data(), force->data());  // Vector4d: 4 packed doubles
+  args.tangent = tangent ? tangent->data() : nullptr;
   return kernel == ElementKernel::kAvx512 ? ElementPassAvx512(args) : ElementPassAvx2(args);
 }
 
@@ -189,15 +196,8 @@ void CorotationalTangentTimes(const FemModel& m, const std::vector<Eigen::Vector
   y.setZero(x.size());
   const ElementKernel kernel = ResolveElementKernel(m.settings.element_kernel);
   if (kernel != ElementKernel::kScalar && m.element_batches.num_tets == m.rest_mesh.num_tets()) {
-    ElementPassArgs args;
-    args.rest = m.element_batches.rest.data();
-    args.dofs = m.element_batches.dofs.data();
-    args.num_tets = m.element_batches.num_tets;
-    args.lambda_Pa = m.lame_lambda_Pa;
-    args.mu_Pa = m.lame_mu_Pa;
-    args.displacement = x.data();
-    args.rotation_cache = const_cast<double*>(cache.data()->data());  // read only here
-    args.force = y.data();
+    const ElementPassArgs args =
+        BatchArgs(m, x, const_cast<double*>(cache.data()->data()), y.data());  // the cache is read only here
     (kernel == ElementKernel::kAvx512 ? TangentProductAvx512 : TangentProductAvx2)(args);
     return;
   }
@@ -220,7 +220,8 @@ void CorotationalTangentTimes(const FemModel& m, const std::vector<Eigen::Vector
 ElementKernel ResolveElementKernel(ElementKernel requested) {
   static const ElementKernel supported = SupportedKernel();
   static const ElementKernel from_environment = EnvironmentKernel();
-  if (requested == ElementKernel::kAuto) requested = from_environment == ElementKernel::kAuto ? supported : from_environment;
+  if (requested == ElementKernel::kAuto)
+    requested = from_environment == ElementKernel::kAuto ? supported : from_environment;
   // The enumerators are ordered narrow to wide.
   return static_cast<int>(requested) <= static_cast<int>(supported) ? requested : supported;
 }
@@ -230,7 +231,8 @@ double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eig
   if (model.settings.element_model == ElementModel::kLinear)
     return LinearForces(model, u, tangent_values, internal_force_N);
   const ElementKernel kernel = ResolveElementKernel(model.settings.element_kernel);
-  if (rotation_cache && kernel != ElementKernel::kScalar && model.element_batches.num_tets == model.rest_mesh.num_tets())
+  if (rotation_cache && kernel != ElementKernel::kScalar &&
+      model.element_batches.num_tets == model.rest_mesh.num_tets())
     return SimdCorotationalForces(model, kernel, u, tangent_values, internal_force_N, *rotation_cache);
   return CorotationalForces(model, u, tangent_values, internal_force_N, rotation_cache);
 }
