@@ -169,14 +169,23 @@ ElementPassArgs BatchArgs(const FemModel& m, const Eigen::VectorXd& x, double* r
   return args;
 }
 
+size_t TurnedGradientSize(const FemModel& m) {
+  return m.element_batches.rest.size() / kElementBatchFields * kTurnedGradientFields;
+}
+
 double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eigen::VectorXd& u,
-                              Eigen::VectorXd* tangent, Eigen::VectorXd* force, std::vector<Eigen::Vector4d>& cache) {
+                              Eigen::VectorXd* tangent, Eigen::VectorXd* force, std::vector<Eigen::Vector4d>& cache,
+                              std::vector<double>* turned_gradients) {
   if (static_cast<int>(cache.size()) != m.rest_mesh.num_tets())
     cache.assign(m.rest_mesh.num_tets(), Eigen::Vector4d(0, 0, 0, 1));
   force->setZero(u.size());
   if (tangent) tangent->setZero(m.pattern.structure.nonZeros());
   ElementPassArgs args = BatchArgs(m, u, cache.data()->data(), force->data());  // Vector4d: 4 packed doubles
   args.tangent = tangent ? tangent->data() : nullptr;
+  if (turned_gradients) {
+    turned_gradients->resize(TurnedGradientSize(m));
+    args.turned_gradients_out = turned_gradients->data();
+  }
   return kernel == ElementKernel::kAvx512 ? ElementPassAvx512(args) : ElementPassAvx2(args);
 }
 
@@ -192,12 +201,14 @@ void ScalarElementRotation(const double* f, double* q, double* r) {
 }
 
 void CorotationalTangentTimes(const FemModel& m, const std::vector<Eigen::Vector4d>& cache, const Eigen::VectorXd& x,
-                              Eigen::VectorXd& y) {
+                              Eigen::VectorXd& y, const std::vector<double>* turned_gradients) {
   y.setZero(x.size());
   const ElementKernel kernel = ResolveElementKernel(m.settings.element_kernel);
   if (kernel != ElementKernel::kScalar && m.element_batches.num_tets == m.rest_mesh.num_tets()) {
-    const ElementPassArgs args =
+    ElementPassArgs args =
         BatchArgs(m, x, const_cast<double*>(cache.data()->data()), y.data());  // the cache is read only here
+    if (turned_gradients && turned_gradients->size() == TurnedGradientSize(m))
+      args.turned_gradients = turned_gradients->data();
     (kernel == ElementKernel::kAvx512 ? TangentProductAvx512 : TangentProductAvx2)(args);
     return;
   }
@@ -227,13 +238,16 @@ ElementKernel ResolveElementKernel(ElementKernel requested) {
 }
 
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
-                            Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache) {
+                            Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
+                            std::vector<double>* turned_gradients) {
+  if (turned_gradients) turned_gradients->clear();  // only the SIMD pass fills them
   if (model.settings.element_model == ElementModel::kLinear)
     return LinearForces(model, u, tangent_values, internal_force_N);
   const ElementKernel kernel = ResolveElementKernel(model.settings.element_kernel);
   if (rotation_cache && kernel != ElementKernel::kScalar &&
       model.element_batches.num_tets == model.rest_mesh.num_tets())
-    return SimdCorotationalForces(model, kernel, u, tangent_values, internal_force_N, *rotation_cache);
+    return SimdCorotationalForces(model, kernel, u, tangent_values, internal_force_N, *rotation_cache,
+                                  turned_gradients);
   return CorotationalForces(model, u, tangent_values, internal_force_N, rotation_cache);
 }
 

@@ -3,9 +3,8 @@
 // linear or corotational (f_e = R K_e (R^T x_e - X_e), tangent R K_e R^T: the usual
 // corotational linearisation that drops dR/dx).
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "physics/fem/fem_model.h"
 
@@ -21,20 +20,23 @@ ElementKernel ResolveElementKernel(ElementKernel requested);
 /// (3n, N). Returns the elastic energy (J). rotation_cache (optional, per tet quaternion x y z w,
 /// identity on first use) warm-starts the corotational rotation from the last call: far cheaper
 /// than an SVD per element; elements near inversion still go through the SVD. With a cache the pass
-/// runs model.settings.element_kernel (ResolveElementKernel).
-double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u,
-                            Eigen::VectorXd* tangent_values, Eigen::VectorXd* internal_force_N,
-                            std::vector<Eigen::Vector4d>* rotation_cache = nullptr);
+/// runs model.settings.element_kernel (ResolveElementKernel). turned_gradients (optional, with a
+/// cache): the SIMD pass leaves R grad N_b there for CorotationalTangentTimes (emptied otherwise).
+double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
+                            Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache = nullptr,
+                            std::vector<double>* turned_gradients = nullptr);
 
 /// y = K_t x for a corotational body without assembling K_t (the tangent ComputeElasticForces
 /// assembles, R K R^T per tet, at the rotations it left in rotation_cache), element by element
 /// with model.settings.element_kernel. Costs about one SpMV; saves the assembly when a solver only
-/// needs products. x, y: 3n.
+/// needs products. x, y: 3n. turned_gradients: what the last pass left (same rotations), which
+/// spares the SIMD product turning every tet's gradients; ignored when empty.
 void CorotationalTangentTimes(const FemModel& model, const std::vector<Eigen::Vector4d>& rotation_cache,
-                              const Eigen::VectorXd& x, Eigen::VectorXd& y);
+                              const Eigen::VectorXd& x, Eigen::VectorXd& y,
+                              const std::vector<double>* turned_gradients = nullptr);
 
 /// y = A x for a symmetric matrix stored in the pattern (read row-wise, gather form).
-void SymmetricPatternMultiply(const SparsePattern& pattern, const Eigen::VectorXd& values,
-                              const Eigen::VectorXd& x, Eigen::VectorXd& y);
+void SymmetricPatternMultiply(const SparsePattern& pattern, const Eigen::VectorXd& values, const Eigen::VectorXd& x,
+                              Eigen::VectorXd& y);
 
 }  // namespace vesica::physics

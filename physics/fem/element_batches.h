@@ -15,6 +15,9 @@ inline constexpr int kElementBatchWidth = 8;
 /// Fields per block: grad N1, N2, N3 (x y z each, 1/m; grad N0 = -(sum of the others)) and the
 /// rest volume (m^3).
 inline constexpr int kElementBatchFields = 10;
+/// Fields per block of the turned gradients R grad N1, N2, N3 a corotational pass can leave for the
+/// tangent products that follow it (elastic_forces.h).
+inline constexpr int kTurnedGradientFields = 9;
 
 struct ElementBatches {
   int num_tets = 0;

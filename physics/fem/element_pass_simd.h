@@ -19,6 +19,11 @@ struct ElementPassArgs {
   double* tangent = nullptr;             ///< nnz pattern values, zeroed by the caller; null: skip
   const int* block_slot = nullptr;       ///< SparsePattern::block_slot, 16 per tet
   const int* column_stride = nullptr;    ///< SparsePattern::column_stride, per node
+  /// Turned shape gradients R grad N_b (b = 1..3, x y z) per tet in ElementBatches' block layout
+  /// (kTurnedGradientFields fields a block): the pass writes them when non-null, the product reads
+  /// them when non-null (else it turns the gradients by rotation_cache).
+  double* turned_gradients_out = nullptr;
+  const double* turned_gradients = nullptr;
 };
 
 /// The scalar pass's rotation rule for one element: the warm-started quaternion iteration where

@@ -30,6 +30,7 @@ struct FemBody::Workspace {
   Eigen::VectorXd solution_product;      // S du after a kRotatedFactorPcg solve (b - r)
   bool solution_product_valid = false;
   std::vector<Eigen::Vector4d> rotations;  // corotational warm start, per tet
+  std::vector<double> turned_gradients;    // R grad N per tet from the last matrix-free pass
   BlockJacobiPreconditioner jacobi;
   FloatBlockRows float_rows;  // settings.rotated_factor_float_sweeps: the sweeps' copy of S
   bool float_sweeps = false;
@@ -144,7 +145,7 @@ bool FemBody::MatrixFree() const {
 
 void FemBody::TangentTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   if (MatrixFree())
-    CorotationalTangentTimes(*model_, work_->rotations, x, y);
+    CorotationalTangentTimes(*model_, work_->rotations, x, y, &work_->turned_gradients);
   else
     SymmetricPatternMultiply(model_->pattern, work_->tangent_values, x, y);
 }
@@ -197,7 +198,7 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
   Workspace& w = *work_;
   const bool linear = s.element_model == ElementModel::kLinear;
   if (MatrixFree()) {  // forces and rotations only: the solver applies K_t element by element
-    w.elastic_energy = ComputeElasticForces(m, u, nullptr, &w.internal_force, &w.rotations);
+    w.elastic_energy = ComputeElasticForces(m, u, nullptr, &w.internal_force, &w.rotations, &w.turned_gradients);
     w.system_assembled = true;
     return;
   }

@@ -73,7 +73,8 @@ TEST(ElasticForcesTest, InternalForceIsTheEnergyGradient) {
     Eigen::VectorXd up = u, um = u, dummy;
     up[dof] += h;
     um[dof] -= h;
-    const double derivative = (ComputeElasticForces(m, up, nullptr, &dummy) - ComputeElasticForces(m, um, nullptr, &dummy)) / (2 * h);
+    const double derivative =
+        (ComputeElasticForces(m, up, nullptr, &dummy) - ComputeElasticForces(m, um, nullptr, &dummy)) / (2 * h);
     EXPECT_NEAR(f[dof], derivative, 1e-5 * f.cwiseAbs().maxCoeff()) << "dof " << dof;
   }
 }
@@ -93,7 +94,8 @@ TEST(ElasticForcesTest, PatternMultiplyEqualsTheSparseProduct) {
 }
 
 // The element-by-element product (CorotationalTangentTimes) is the assembled tangent's product, for
-// the scalar and the SIMD kernels, on a turned, stretched and sheared body.
+// the scalar and the SIMD kernels, on a turned, stretched and sheared body; the SIMD product gives
+// it both from the rotation cache and from the turned gradients the pass left.
 TEST(ElasticForcesTest, TangentTimesEqualsTheAssembledTangentProduct) {
   for (ElementKernel kernel : {ElementKernel::kScalar, ElementKernel::kAuto}) {
     FemSettings s;
@@ -107,15 +109,27 @@ TEST(ElasticForcesTest, TangentTimesEqualsTheAssembledTangentProduct) {
       u.segment<3>(3 * i) += Eigen::Vector3d(0.1 * x.x(), 0.3 * x.x() * x.y() / 0.03, 0.05 * std::sin(90.0 * x.z()));
     }
     std::vector<Eigen::Vector4d> cache;
+    std::vector<double> turned;
     Eigen::VectorXd tangent, force;
-    ComputeElasticForces(m, u, &tangent, &force, &cache);
+    ComputeElasticForces(m, u, &tangent, &force, &cache, &turned);
+    EXPECT_EQ(turned.empty(), kernel == ElementKernel::kScalar);  // only the SIMD pass leaves them
     Eigen::VectorXd x(m.num_dofs());
     for (int i = 0; i < m.num_dofs(); ++i) x[i] = std::cos(0.7 * i) * 1e-3;
-    Eigen::VectorXd assembled, element_by_element;
+    Eigen::VectorXd assembled, element_by_element, from_turned;
     SymmetricPatternMultiply(m.pattern, tangent, x, assembled);
     CorotationalTangentTimes(m, cache, x, element_by_element);
-    EXPECT_LT((element_by_element - assembled).cwiseAbs().maxCoeff(), 1e-12 * assembled.cwiseAbs().maxCoeff())
+    CorotationalTangentTimes(m, cache, x, from_turned, &turned);
+    const double scale = assembled.cwiseAbs().maxCoeff();
+    EXPECT_LT((element_by_element - assembled).cwiseAbs().maxCoeff(), 1e-12 * scale)
         << "kernel " << static_cast<int>(kernel);
+    EXPECT_LT((from_turned - assembled).cwiseAbs().maxCoeff(), 1e-12 * scale) << "kernel " << static_cast<int>(kernel);
+    // Stale turned gradients (another displacement's) are used as given: the product follows them.
+    if (!turned.empty()) {
+      std::vector<double> other = turned;
+      for (double& r : other) r *= 1.01;
+      CorotationalTangentTimes(m, cache, x, from_turned, &other);
+      EXPECT_GT((from_turned - assembled).cwiseAbs().maxCoeff(), 1e-3 * scale);
+    }
   }
 }
 
@@ -135,7 +149,8 @@ TEST(ElementRotationTest, QuaternionIterationAgreesWithSvd) {
   EXPECT_LT((cold - RotationFromDeformationGradient(f)).cwiseAbs().maxCoeff(), 1e-9);
   // Warm start after a small further rotation converges within the body's 30-iteration cap.
   const Eigen::Matrix3d f2 = Eigen::AngleAxisd(0.02, Eigen::Vector3d::UnitX()).toRotationMatrix() * f;
-  EXPECT_LT((RotationByQuaternionIteration(f2, q, 30) - RotationFromDeformationGradient(f2)).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((RotationByQuaternionIteration(f2, q, 30) - RotationFromDeformationGradient(f2)).cwiseAbs().maxCoeff(),
+            1e-9);
 }
 
 // Newton's step on the polar condition converges quadratically: from the last step's rotation a
