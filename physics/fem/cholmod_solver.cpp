@@ -1,12 +1,11 @@
 #include "physics/fem/cholmod_solver.h"
 
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/CholmodSupport>
-#include <Eigen/SparseCore>
 
 #include "physics/fem/half_factor.h"
 
@@ -18,7 +17,9 @@ using Decomposition = Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, E
 
 // Eigen keeps CHOLMOD's factor protected; the float copy needs its supernodes.
 struct FactorAccess : Decomposition {
-  static const cholmod_factor* Of(const Decomposition& d) { return static_cast<const FactorAccess&>(d).m_cholmodFactor; }
+  static const cholmod_factor* Of(const Decomposition& d) {
+    return static_cast<const FactorAccess&>(d).m_cholmodFactor;
+  }
 };
 
 // CHOLMOD stops an L L^T factorisation at the first non-positive pivot (minor < n), but its
@@ -41,6 +42,9 @@ struct SingleFactor {
   std::vector<int> super, pi, px, rows, perm;
   std::vector<float> values;
   std::vector<std::uint16_t> half_values;
+  std::vector<std::size_t> half_px;   // supernode starts in the packed half_values
+  std::vector<float> panel_inverses;  // HalfFactorView::panel_inverses
+  std::vector<int> first_panel;
   double half_scale = 1.0;  // half_values = half_scale L
   bool half = false;
   mutable Eigen::VectorXf y, gathered;
@@ -62,14 +66,45 @@ struct SingleFactor {
     for (size_t k = 0; k < entries; ++k) largest = std::max(largest, std::abs(x[k]));
     half = half_storage && HalfFactorSupported() && largest > 0.0 && std::isfinite(largest);
     if (half) {
+      // Packed (half_factor.h): each column from its diagonal entry down.
       half_scale = std::exp2(std::floor(std::log2(16384.0 / largest)));
-      half_values.assign(entries + 8, 0);  // 8 zeros past the end: the kernels read whole vectors
-      ConvertToHalfF16c(x, entries, half_scale, half_values.data());
+      half_px.resize(ns + 1);
+      half_px[0] = 0;
+      for (int s = 0; s < ns; ++s)
+        half_px[s + 1] = half_px[s] + PackedSupernodeEntries(pi[s + 1] - pi[s], super[s + 1] - super[s]);
+      half_values.assign(half_px[ns] + kHalfFactorPadding, 0);  // zeros past the end: the kernels read whole vectors
+      first_panel.resize(ns + 1);
+      first_panel[0] = 0;
+      for (int s = 0; s < ns; ++s) first_panel[s + 1] = first_panel[s] + (super[s + 1] - super[s]) / 4;
+      panel_inverses.resize(static_cast<size_t>(kPanelInverseFloats) * first_panel[ns]);
+      for (int s = 0; s < ns; ++s) {
+        const int nr = pi[s + 1] - pi[s], nc = super[s + 1] - super[s];
+        const double* block = x + px[s];  // CHOLMOD's layout: column j at block + j nr
+        std::uint16_t* out = half_values.data() + half_px[s];
+        for (int j = 0; j < nc; ++j) {
+          ConvertToHalfF16c(block + static_cast<std::ptrdiff_t>(j) * nr + j, nr - j, half_scale, out);
+          out += nr - j;
+        }
+        for (int k = 0; k < nc / 4; ++k) {
+          const Eigen::Map<const Eigen::Matrix4d, 0, Eigen::OuterStride<>> triangle(
+              block + static_cast<std::ptrdiff_t>(4 * k) * nr + 4 * k, Eigen::OuterStride<>(nr));
+          // (s T)^-1 = T^-1 / s: Eigen 3.4's triangular solve of the expression (s T) ignored s.
+          const Eigen::Matrix4d inverse =
+              triangle.triangularView<Eigen::Lower>().solve(Eigen::Matrix4d::Identity()) / half_scale;
+          float* panel = panel_inverses.data() + static_cast<size_t>(kPanelInverseFloats) * (first_panel[s] + k);
+          Eigen::Map<Eigen::Matrix4f> forward(panel), backward(panel + 16);
+          forward = inverse.cast<float>();
+          backward = inverse.transpose().cast<float>();
+        }
+      }
       values.clear();
     } else {
       values.resize(entries);
       for (size_t k = 0; k < entries; ++k) values[k] = static_cast<float>(x[k]);
       half_values.clear();
+      half_px.clear();
+      panel_inverses.clear();
+      first_panel.clear();
     }
     y.resize(n);
     int widest = 0;
@@ -85,9 +120,11 @@ struct SingleFactor {
     if (half) {
       // (s L)(s L)^T = s^2 L L^T, so the solve with the stored factor comes out s^2 too small.
       HalfFactorView view;
-      view.super = super.data(), view.pi = pi.data(), view.px = px.data(), view.rows = rows.data();
+      view.super = super.data(), view.pi = pi.data(), view.px = half_px.data(), view.rows = rows.data();
       view.num_supernodes = ns;
       view.values = half_values.data();
+      view.panel_inverses = panel_inverses.data();
+      view.first_panel = first_panel.data();
       HalfFactorSolveF16c(view, y.data(), gathered.data());
       x.resize(n);
       const double unscale = half_scale * half_scale;

@@ -23,120 +23,131 @@ bool HalfFactorSupported() {
 namespace vesica::physics {
 namespace {
 
-inline __m256 Load8(const std::uint16_t* p) { return _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))); }
-inline float Load1(const std::uint16_t* p) { return _cvtsh_ss(*p); }
-
-// Lanes [0, m) set, m in 0..8.
-inline __m256i TailMask(int m) { return _mm256_cmpgt_epi32(_mm256_set1_epi32(m), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)); }
-
-inline float Sum(__m256 v) {
+// 8 floats a vector. (A 16-float AVX-512 build of these kernels measured the same on the
+// development machine: conversions and multiply-adds are not what limits them.)
+constexpr int W = 8;
+using vf = __m256;
+inline vf LoadHalf(const std::uint16_t* p) {
+  return _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+inline vf Load(const float* p) { return _mm256_loadu_ps(p); }
+inline void Store(float* p, vf v) { _mm256_storeu_ps(p, v); }
+inline vf Zero() { return _mm256_setzero_ps(); }
+inline vf Splat(float a) { return _mm256_set1_ps(a); }
+inline vf Fma(vf a, vf b, vf c) { return _mm256_fmadd_ps(a, b, c); }
+inline float Sum(vf v) {
   const __m128 s = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
   const __m128 t = _mm_add_ps(s, _mm_movehl_ps(s, s));
   return _mm_cvtss_f32(_mm_add_ss(t, _mm_movehdup_ps(t)));
 }
+// Lanes [0, m) set, m in 0..8: the last rows of a column in one masked vector (LoadHalf may read
+// past a column's end: into the next column or the factor's padding).
+using Tail = __m256i;
+inline Tail MakeTail(int m) {
+  return _mm256_cmpgt_epi32(_mm256_set1_epi32(m), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+}
+inline vf LoadTail(const float* p, Tail mask) { return _mm256_maskload_ps(p, mask); }
+inline void StoreTail(float* p, Tail mask, vf v) { _mm256_maskstore_ps(p, mask, v); }
+inline vf KeepTail(vf v, Tail mask) { return _mm256_and_ps(v, _mm256_castsi256_ps(mask)); }
+
+inline float Load1(const std::uint16_t* p) { return _cvtsh_ss(*p); }
+
+// Row i of column j of a packed supernode (half_factor.h) is Column(l, nr, j)[i], for i >= j.
+inline const std::uint16_t* Column(const std::uint16_t* l, int nr, int j) {
+  return l + static_cast<std::ptrdiff_t>(j) * nr - static_cast<std::ptrdiff_t>(j) * (j + 1) / 2;
+}
+
+// M v for a 4 x 4 matrix stored by columns (16 floats): two products and two sums deep.
+inline __m128 PanelTimes(const float* m, __m128 v) {
+  const __m128 v0 = _mm_shuffle_ps(v, v, 0x00), v1 = _mm_shuffle_ps(v, v, 0x55);
+  const __m128 v2 = _mm_shuffle_ps(v, v, 0xaa), v3 = _mm_shuffle_ps(v, v, 0xff);
+  const __m128 low = _mm_fmadd_ps(_mm_loadu_ps(m + 4), v1, _mm_mul_ps(_mm_loadu_ps(m), v0));
+  const __m128 high = _mm_fmadd_ps(_mm_loadu_ps(m + 12), v3, _mm_mul_ps(_mm_loadu_ps(m + 8), v2));
+  return _mm_add_ps(low, high);
+}
 
 // y[0..n) += a * l[0..n)
 inline void Axpy(float a, const std::uint16_t* l, float* y, int n) {
-  const __m256 va = _mm256_set1_ps(a);
+  const vf va = Splat(a);
   int i = 0;
-  for (; i + 8 <= n; i += 8) _mm256_storeu_ps(y + i, _mm256_fmadd_ps(va, Load8(l + i), _mm256_loadu_ps(y + i)));
+  for (; i + W <= n; i += W) Store(y + i, Fma(va, LoadHalf(l + i), Load(y + i)));
   for (; i < n; ++i) y[i] += a * Load1(l + i);
 }
 
 // l[0..n) . y[0..n)
 inline float Dot(const std::uint16_t* l, const float* y, int n) {
-  __m256 acc0 = _mm256_setzero_ps(), acc1 = _mm256_setzero_ps();
+  vf acc0 = Zero(), acc1 = Zero();
   int i = 0;
-  for (; i + 16 <= n; i += 16) {
-    acc0 = _mm256_fmadd_ps(Load8(l + i), _mm256_loadu_ps(y + i), acc0);
-    acc1 = _mm256_fmadd_ps(Load8(l + i + 8), _mm256_loadu_ps(y + i + 8), acc1);
+  for (; i + 2 * W <= n; i += 2 * W) {
+    acc0 = Fma(LoadHalf(l + i), Load(y + i), acc0);
+    acc1 = Fma(LoadHalf(l + i + W), Load(y + i + W), acc1);
   }
-  for (; i + 8 <= n; i += 8) acc0 = _mm256_fmadd_ps(Load8(l + i), _mm256_loadu_ps(y + i), acc0);
-  float s = Sum(_mm256_add_ps(acc0, acc1));
+  for (; i + W <= n; i += W) acc0 = Fma(LoadHalf(l + i), Load(y + i), acc0);
+  float s = Sum(acc0 + acc1);
   for (; i < n; ++i) s += Load1(l + i) * y[i];
   return s;
 }
 
-// y[0..n) += sum_c a[c] l_c[0..n) for C columns l_c = l + c * stride: y is read and written once
-// for C columns of L.
+// y[0..n) += sum_c a[c] l_c[0..n) for C columns l_c = Column(l, nr, j + c) + row: y is read and
+// written once for C columns of L.
 template <int C>
-inline void AxpyColumns(const float* a, const std::uint16_t* l, std::ptrdiff_t stride, float* y, int n) {
-  __m256 coefficient[C];
-  for (int c = 0; c < C; ++c) coefficient[c] = _mm256_set1_ps(a[c]);
+inline void AxpyColumns(const float* a, const std::uint16_t* l, int nr, int j, int row, float* y, int n) {
+  vf coefficient[C];
+  const std::uint16_t* column[C];
+  for (int c = 0; c < C; ++c) coefficient[c] = Splat(a[c]), column[c] = Column(l, nr, j + c) + row;
   int i = 0;
-  for (; i + 8 <= n; i += 8) {
-    __m256 v = _mm256_loadu_ps(y + i);
-    for (int c = 0; c < C; ++c) v = _mm256_fmadd_ps(coefficient[c], Load8(l + c * stride + i), v);
-    _mm256_storeu_ps(y + i, v);
+  for (; i + W <= n; i += W) {
+    vf v = Load(y + i);
+    for (int c = 0; c < C; ++c) v = Fma(coefficient[c], LoadHalf(column[c] + i), v);
+    Store(y + i, v);
   }
-  if (i < n) {  // the last 1-7 rows in one masked vector (the factor is padded for the over-read)
-    const __m256i mask = TailMask(n - i);
-    __m256 v = _mm256_maskload_ps(y + i, mask);
-    for (int c = 0; c < C; ++c) v = _mm256_fmadd_ps(coefficient[c], Load8(l + c * stride + i), v);
-    _mm256_maskstore_ps(y + i, mask, v);
+  if (i < n) {  // the last rows in one masked vector
+    const Tail mask = MakeTail(n - i);
+    vf v = LoadTail(y + i, mask);
+    for (int c = 0; c < C; ++c) v = Fma(coefficient[c], LoadHalf(column[c] + i), v);
+    StoreTail(y + i, mask, v);
   }
 }
 
-// out[c] = l_c[0..n) . y[0..n) for C columns l_c = l + c * stride: y is read once.
+// out[c] = l_c[0..n) . y[0..n) for C columns l_c = Column(l, nr, j + c) + row: y is read once.
 template <int C>
-inline void DotColumns(const std::uint16_t* l, std::ptrdiff_t stride, const float* y, int n, float* out) {
-  __m256 sum[C];
-  for (int c = 0; c < C; ++c) sum[c] = _mm256_setzero_ps();
+inline void DotColumns(const std::uint16_t* l, int nr, int j, int row, const float* y, int n, float* out) {
+  vf sum[C];
+  const std::uint16_t* column[C];
+  for (int c = 0; c < C; ++c) sum[c] = Zero(), column[c] = Column(l, nr, j + c) + row;
   int i = 0;
-  for (; i + 8 <= n; i += 8) {
-    const __m256 v = _mm256_loadu_ps(y + i);
-    for (int c = 0; c < C; ++c) sum[c] = _mm256_fmadd_ps(Load8(l + c * stride + i), v, sum[c]);
+  for (; i + W <= n; i += W) {
+    const vf v = Load(y + i);
+    for (int c = 0; c < C; ++c) sum[c] = Fma(LoadHalf(column[c] + i), v, sum[c]);
   }
-  if (i < n) {  // the last 1-7 rows in one masked vector (the factor is padded for the over-read)
-    const __m256i mask = TailMask(n - i);
-    const __m256 v = _mm256_maskload_ps(y + i, mask);
-    for (int c = 0; c < C; ++c)
-      sum[c] = _mm256_fmadd_ps(_mm256_and_ps(Load8(l + c * stride + i), _mm256_castsi256_ps(mask)), v, sum[c]);
+  if (i < n) {  // the last rows in one masked vector
+    const Tail mask = MakeTail(n - i);
+    const vf v = LoadTail(y + i, mask);
+    for (int c = 0; c < C; ++c) sum[c] = Fma(KeepTail(LoadHalf(column[c] + i), mask), v, sum[c]);
   }
   for (int c = 0; c < C; ++c) out[c] = Sum(sum[c]);
 }
 
-inline void Axpy4(const float* a, const std::uint16_t* l, std::ptrdiff_t stride, float* y, int n) {
-  AxpyColumns<4>(a, l, stride, y, n);
-}
-inline void Dot4(const std::uint16_t* l, std::ptrdiff_t stride, const float* y, int n, float* out) {
-  DotColumns<4>(l, stride, y, n, out);
-}
-
 }  // namespace
-
-void ConvertToHalfF16c(const double* x, std::size_t n, double scale, std::uint16_t* out) {
-  std::size_t k = 0;
-  const __m256d s = _mm256_set1_pd(scale);
-  for (; k + 8 <= n; k += 8) {
-    const __m128 lo = _mm256_cvtpd_ps(_mm256_mul_pd(s, _mm256_loadu_pd(x + k)));
-    const __m128 hi = _mm256_cvtpd_ps(_mm256_mul_pd(s, _mm256_loadu_pd(x + k + 4)));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + k),
-                     _mm256_cvtps_ph(_mm256_set_m128(hi, lo), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
-  }
-  for (; k < n; ++k) out[k] = _cvtss_sh(static_cast<float>(scale * x[k]), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
-}
 
 void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
   for (int s = 0; s < f.num_supernodes; ++s) {  // L z = y
     const int k0 = f.super[s], nc = f.super[s + 1] - k0, nr = f.pi[s + 1] - f.pi[s];
     const std::uint16_t* l = f.values + f.px[s];
     float* ys = y + k0;
-    // Diagonal block, four columns at a time: their 4 x 4 triangle, then the rows below it.
+    // Diagonal block, four columns at a time: their 4 x 4 triangle by its stored inverse (no chain
+    // of divisions), then the rows below it; the last nc % 4 columns one by one.
     const int panels = nc / 4 * 4;
-    for (int j0 = 0; j0 < panels; j0 += 4) {
-      const std::uint16_t* panel = l + static_cast<std::ptrdiff_t>(j0) * nr;
-      float minus[4];
-      for (int c = 0; c < 4; ++c) {
-        const std::uint16_t* column = panel + static_cast<std::ptrdiff_t>(c) * nr + j0;
-        ys[j0 + c] /= Load1(column + c);
-        for (int r = c + 1; r < 4; ++r) ys[j0 + r] -= Load1(column + r) * ys[j0 + c];
-        minus[c] = -ys[j0 + c];
-      }
-      Axpy4(minus, panel + j0 + 4, nr, ys + j0 + 4, nc - j0 - 4);
+    const float* inverse = f.panel_inverses + kPanelInverseFloats * f.first_panel[s];
+    for (int j0 = 0; j0 < panels; j0 += 4, inverse += kPanelInverseFloats) {
+      const __m128 z = PanelTimes(inverse, _mm_loadu_ps(ys + j0));
+      _mm_storeu_ps(ys + j0, z);
+      alignas(16) float minus[4];
+      _mm_store_ps(minus, _mm_sub_ps(_mm_setzero_ps(), z));
+      AxpyColumns<4>(minus, l, nr, j0, j0 + 4, ys + j0 + 4, nc - j0 - 4);
     }
     for (int j = panels; j < nc; ++j) {
-      const std::uint16_t* column = l + static_cast<std::ptrdiff_t>(j) * nr;
+      const std::uint16_t* column = Column(l, nr, j);
       ys[j] /= Load1(column + j);
       Axpy(-ys[j], column + j + 1, ys + j + 1, nc - j - 1);
     }
@@ -144,9 +155,9 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
     if (below == 0) continue;
     for (int i = 0; i < below; ++i) gathered[i] = 0.0f;
     int j = 0;
-    for (; j + 8 <= nc; j += 8) AxpyColumns<8>(ys + j, l + static_cast<std::ptrdiff_t>(j) * nr + nc, nr, gathered, below);
-    for (; j + 4 <= nc; j += 4) Axpy4(ys + j, l + static_cast<std::ptrdiff_t>(j) * nr + nc, nr, gathered, below);
-    for (; j < nc; ++j) Axpy(ys[j], l + static_cast<std::ptrdiff_t>(j) * nr + nc, gathered, below);
+    for (; j + 8 <= nc; j += 8) AxpyColumns<8>(ys + j, l, nr, j, nc, gathered, below);
+    for (; j + 4 <= nc; j += 4) AxpyColumns<4>(ys + j, l, nr, j, nc, gathered, below);
+    for (; j < nc; ++j) Axpy(ys[j], Column(l, nr, j) + nc, gathered, below);
     const int* rows = f.rows + f.pi[s] + nc;
     for (int i = 0; i < below; ++i) y[rows[i]] -= gathered[i];
   }
@@ -161,35 +172,44 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
       int j = 0;
       for (; j + 8 <= nc; j += 8) {
         float dots[8];
-        DotColumns<8>(l + static_cast<std::ptrdiff_t>(j) * nr + nc, nr, gathered, below, dots);
+        DotColumns<8>(l, nr, j, nc, gathered, below, dots);
         for (int c = 0; c < 8; ++c) ys[j + c] -= dots[c];
       }
       for (; j + 4 <= nc; j += 4) {
         float dots[4];
-        Dot4(l + static_cast<std::ptrdiff_t>(j) * nr + nc, nr, gathered, below, dots);
+        DotColumns<4>(l, nr, j, nc, gathered, below, dots);
         for (int c = 0; c < 4; ++c) ys[j + c] -= dots[c];
       }
-      for (; j < nc; ++j) ys[j] -= Dot(l + static_cast<std::ptrdiff_t>(j) * nr + nc, gathered, below);
+      for (; j < nc; ++j) ys[j] -= Dot(Column(l, nr, j) + nc, gathered, below);
     }
     // Diagonal block transposed: the columns past the last whole panel one by one, then the panels
-    // from the last: dots with the solved rows below them, then their 4 x 4 triangle.
+    // from the last: dots with the solved rows below them, then their triangle's inverse transposed.
     const int panels = nc / 4 * 4;
     for (int j = nc - 1; j >= panels; --j) {
-      const std::uint16_t* column = l + static_cast<std::ptrdiff_t>(j) * nr;
+      const std::uint16_t* column = Column(l, nr, j);
       ys[j] = (ys[j] - Dot(column + j + 1, ys + j + 1, nc - j - 1)) / Load1(column + j);
     }
+    const float* inverse = f.panel_inverses + kPanelInverseFloats * (f.first_panel[s] + panels / 4);
     for (int j0 = panels - 4; j0 >= 0; j0 -= 4) {
-      const std::uint16_t* panel = l + static_cast<std::ptrdiff_t>(j0) * nr;
-      float dots[4];
-      Dot4(panel + j0 + 4, nr, ys + j0 + 4, nc - j0 - 4, dots);
-      for (int c = 3; c >= 0; --c) {
-        const std::uint16_t* column = panel + static_cast<std::ptrdiff_t>(c) * nr + j0;
-        float v = ys[j0 + c] - dots[c];
-        for (int r = c + 1; r < 4; ++r) v -= Load1(column + r) * ys[j0 + r];
-        ys[j0 + c] = v / Load1(column + c);
-      }
+      inverse -= kPanelInverseFloats;
+      alignas(16) float dots[4];
+      DotColumns<4>(l, nr, j0, j0 + 4, ys + j0 + 4, nc - j0 - 4, dots);
+      _mm_storeu_ps(ys + j0, PanelTimes(inverse + 16, _mm_sub_ps(_mm_loadu_ps(ys + j0), _mm_load_ps(dots))));
     }
   }
+}
+
+void ConvertToHalfF16c(const double* x, std::size_t n, double scale, std::uint16_t* out) {
+  std::size_t k = 0;
+  const __m256d s = _mm256_set1_pd(scale);
+  for (; k + 8 <= n; k += 8) {
+    const __m128 lo = _mm256_cvtpd_ps(_mm256_mul_pd(s, _mm256_loadu_pd(x + k)));
+    const __m128 hi = _mm256_cvtpd_ps(_mm256_mul_pd(s, _mm256_loadu_pd(x + k + 4)));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + k),
+                     _mm256_cvtps_ph(_mm256_set_m128(hi, lo), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
+  }
+  for (; k < n; ++k)
+    out[k] = _cvtss_sh(static_cast<float>(scale * x[k]), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
 }
 
 }  // namespace vesica::physics
