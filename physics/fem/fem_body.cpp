@@ -48,6 +48,10 @@ struct FemBody::Workspace {
   std::vector<Eigen::Vector4d> node_quaternions;
   std::vector<Eigen::Matrix3d> node_rotations;
   std::vector<char> node_has_fixed_axis;
+  // Tets around each node (CSR: node n's are node_tets[node_tet_begin[n] .. node_tet_begin[n+1])),
+  // with their rest volumes: the node rotations gather instead of scattering from every tet.
+  std::vector<int> node_tet_begin, node_tets;
+  std::vector<double> node_tet_volumes;
   Eigen::VectorXd rotated_residual, rotated_solution, smoothed_residual, correction, sweep_residual;
 };
 
@@ -242,26 +246,38 @@ void FemBody::UpdateNodeRotations() {
   const FemModel& m = *model_;
   Workspace& w = *work_;
   const int nodes = m.num_nodes();
+  const int tets = m.rest_mesh.num_tets();
   if (static_cast<int>(w.node_quaternions.size()) != nodes) {
     w.node_quaternions.assign(nodes, Eigen::Vector4d(0, 0, 0, 1));
     w.node_rotations.assign(nodes, Eigen::Matrix3d::Identity());
     w.node_has_fixed_axis.assign(nodes, 0);
     for (int i : m.fixed_dofs) w.node_has_fixed_axis[i / 3] = 1;
+    w.node_tet_begin.assign(nodes + 1, 0);
+    for (int t = 0; t < tets; ++t)
+      for (int a = 0; a < 4; ++a) ++w.node_tet_begin[m.rest_mesh.tets(t, a) + 1];
+    for (int n = 0; n < nodes; ++n) w.node_tet_begin[n + 1] += w.node_tet_begin[n];
+    w.node_tets.resize(4 * static_cast<size_t>(tets));
+    w.node_tet_volumes.resize(4 * static_cast<size_t>(tets));
+    std::vector<int> next(w.node_tet_begin.begin(), w.node_tet_begin.end() - 1);
+    for (int t = 0; t < tets; ++t)
+      for (int a = 0; a < 4; ++a) {
+        const int k = next[m.rest_mesh.tets(t, a)]++;
+        w.node_tets[k] = t;
+        w.node_tet_volumes[k] = m.element_batches.rest_volume_m3(t);
+      }
   }
-  if (static_cast<int>(w.rotations.size()) != m.rest_mesh.num_tets()) return;  // linear body: R = I
-  std::vector<Eigen::Vector4d> sum(nodes, Eigen::Vector4d::Zero());
-  for (int t = 0; t < m.rest_mesh.num_tets(); ++t) {
-    const Eigen::Vector4d& q = w.rotations[t];
-    const double volume = m.element_batches.rest_volume_m3(t);
-    for (int a = 0; a < 4; ++a) {
-      const int n = m.rest_mesh.tets(t, a);
-      sum[n] += (q.dot(w.node_quaternions[n]) < 0.0 ? -volume : volume) * q;
-    }
-  }
+  if (static_cast<int>(w.rotations.size()) != tets) return;  // linear body: R = I
   for (int n = 0; n < nodes; ++n) {
-    const double norm = sum[n].norm();
-    if (w.node_has_fixed_axis[n] || !(norm > 0.0)) continue;
-    w.node_quaternions[n] = sum[n] / norm;
+    if (w.node_has_fixed_axis[n]) continue;
+    const Eigen::Vector4d last = w.node_quaternions[n];
+    Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+    for (int k = w.node_tet_begin[n]; k < w.node_tet_begin[n + 1]; ++k) {
+      const Eigen::Vector4d& q = w.rotations[w.node_tets[k]];
+      sum += (q.dot(last) < 0.0 ? -w.node_tet_volumes[k] : w.node_tet_volumes[k]) * q;
+    }
+    const double norm = sum.norm();
+    if (!(norm > 0.0)) continue;
+    w.node_quaternions[n] = sum / norm;
     w.node_rotations[n] = Eigen::Quaterniond(w.node_quaternions[n]).toRotationMatrix();
   }
 }
