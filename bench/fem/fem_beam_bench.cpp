@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "bench/fem/min_statistic.h"
 #include "physics/fem/fem_body.h"
 #include "physics/mesh/primitives.h"
 
@@ -91,7 +92,7 @@ const bool kRegistered = [] {
     for (const auto& [grid, grid_name] : grids)
       for (const BeamVariant& v : variants) {
         const std::string name = std::string("BM_FemBeam/") + element_name + "/" + v.name + "/" + grid_name;
-        benchmark::RegisterBenchmark(name.c_str(), BM_FemBeam, element, grid, v)
+        WithMinimum(benchmark::RegisterBenchmark(name.c_str(), BM_FemBeam, element, grid, v))
             ->Unit(benchmark::kMillisecond)
             ->MinTime(0.3);
       }

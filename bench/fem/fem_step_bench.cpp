@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "bench/fem/min_statistic.h"
 #include "physics/fem/fem_body.h"
 #include "physics/mesh/primitives.h"
 
@@ -32,8 +33,8 @@ Eigen::Vector3i CellsForNodes(int nodes) {
 }
 
 std::shared_ptr<FemModel> GallbladderModel(int nodes, ElementModel element, LinearSolverKind solver,
-                                           int refresh_steps = 1, int max_iterations = 20,
-                                           bool gauss_seidel = false, int sweeps = 0) {
+                                           int refresh_steps = 1, int max_iterations = 20, bool gauss_seidel = false,
+                                           int sweeps = 0) {
   const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, CellsForNodes(nodes));
   FemSettings s;
   s.body_name = "gallbladder box";
@@ -54,8 +55,8 @@ std::shared_ptr<FemModel> GallbladderModel(int nodes, ElementModel element, Line
   return std::make_shared<FemModel>(BuildFemModel(mesh, s, fixed));
 }
 
-void BM_FemStep(benchmark::State& state, ElementModel element, LinearSolverKind solver, int nodes,
-                int refresh_steps, int max_iterations, bool gauss_seidel, int sweeps) {
+void BM_FemStep(benchmark::State& state, ElementModel element, LinearSolverKind solver, int nodes, int refresh_steps,
+                int max_iterations, bool gauss_seidel, int sweeps) {
   const auto model = GallbladderModel(nodes, element, solver, refresh_steps, max_iterations, gauss_seidel, sweeps);
   FemBody body(model);
   const int grasped = model->num_nodes() - 1;
@@ -96,7 +97,7 @@ const bool kRegistered = [] {
       for (int nodes : kTable3Nodes) {
         const std::string name =
             std::string("BM_FemStep/") + element_name + "/" + solver_name + "/" + std::to_string(nodes);
-        benchmark::RegisterBenchmark(name.c_str(), BM_FemStep, element, solver, nodes, 1, 20, false, 0)
+        WithMinimum(benchmark::RegisterBenchmark(name.c_str(), BM_FemStep, element, solver, nodes, 1, 20, false, 0))
             ->Unit(benchmark::kMillisecond)
             ->MinTime(0.2);
       }
@@ -104,7 +105,8 @@ const bool kRegistered = [] {
   // PCG (tolerance 1e-8, at most 20 iterations) preconditioned by it in between.
   for (int nodes : {310, 2865})
     benchmark::RegisterBenchmark(("BM_FemStep/corotational/cholmod_refresh10/" + std::to_string(nodes)).c_str(),
-                                 BM_FemStep, ElementModel::kCorotational, LinearSolverKind::kCholmod, nodes, 10, 20, false, 0)
+                                 BM_FemStep, ElementModel::kCorotational, LinearSolverKind::kCholmod, nodes, 10, 20,
+                                 false, 0)
         ->Unit(benchmark::kMillisecond)
         ->MinTime(0.5);
   // Converged corotational steps: PCG (tolerance 1e-8, cap 100 so that every step converges)
@@ -112,18 +114,19 @@ const bool kRegistered = [] {
   // (LinearSolverKind::kRotatedFactorPcg), alone or between block Gauss-Seidel sweeps (_gs).
   for (int nodes : {310, 2865})
     for (bool gauss_seidel : {false, true})
-      benchmark::RegisterBenchmark(
-          ("BM_FemStep/corotational/rotated_factor" + std::string(gauss_seidel ? "_gs/" : "/") + std::to_string(nodes))
-              .c_str(),
-          BM_FemStep, ElementModel::kCorotational, LinearSolverKind::kRotatedFactorPcg, nodes, 1, 100, gauss_seidel, 0)
+      WithMinimum(benchmark::RegisterBenchmark(("BM_FemStep/corotational/rotated_factor" +
+                                                std::string(gauss_seidel ? "_gs/" : "/") + std::to_string(nodes))
+                                                   .c_str(),
+                                               BM_FemStep, ElementModel::kCorotational,
+                                               LinearSolverKind::kRotatedFactorPcg, nodes, 1, 100, gauss_seidel, 0))
           ->Unit(benchmark::kMillisecond)
           ->Iterations(40);  // the same 40 steps from rest for both: later steps need more iterations
   // The Gauss-Seidel variant with 2 and 3 sweeps a side (the rows above: the default, 1): fewer
   // iterations, each dearer.
   for (int sweeps : {2, 3})
-    benchmark::RegisterBenchmark(("BM_FemStep/corotational/rotated_factor_gs" + std::to_string(sweeps) + "/2865").c_str(),
-                                 BM_FemStep, ElementModel::kCorotational, LinearSolverKind::kRotatedFactorPcg, 2865, 1,
-                                 100, true, sweeps)
+    benchmark::RegisterBenchmark(
+        ("BM_FemStep/corotational/rotated_factor_gs" + std::to_string(sweeps) + "/2865").c_str(), BM_FemStep,
+        ElementModel::kCorotational, LinearSolverKind::kRotatedFactorPcg, 2865, 1, 100, true, sweeps)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(40);
   for (int nodes : kTable3Nodes)
