@@ -75,7 +75,7 @@ struct SingleFactor {
       half_values.assign(half_px[ns] + kHalfFactorPadding, 0);  // zeros past the end: the kernels read whole vectors
       first_panel.resize(ns + 1);
       first_panel[0] = 0;
-      for (int s = 0; s < ns; ++s) first_panel[s + 1] = first_panel[s] + (super[s + 1] - super[s]) / 4;
+      for (int s = 0; s < ns; ++s) first_panel[s + 1] = first_panel[s] + (super[s + 1] - super[s] + 3) / 4;
       panel_inverses.resize(static_cast<size_t>(kPanelInverseFloats) * first_panel[ns]);
       for (int s = 0; s < ns; ++s) {
         const int nr = pi[s + 1] - pi[s], nc = super[s + 1] - super[s];
@@ -85,12 +85,14 @@ struct SingleFactor {
           ConvertToHalfF16c(block + static_cast<std::ptrdiff_t>(j) * nr + j, nr - j, half_scale, out);
           out += nr - j;
         }
-        for (int k = 0; k < nc / 4; ++k) {
-          const Eigen::Map<const Eigen::Matrix4d, 0, Eigen::OuterStride<>> triangle(
-              block + static_cast<std::ptrdiff_t>(4 * k) * nr + 4 * k, Eigen::OuterStride<>(nr));
+        for (int k = 0; 4 * k < nc; ++k) {  // the last panel may be narrower (nc % 4 columns)
+          const int width = std::min(4, nc - 4 * k);
+          const Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>> triangle(
+              block + static_cast<std::ptrdiff_t>(4 * k) * nr + 4 * k, width, width, Eigen::OuterStride<>(nr));
           // (s T)^-1 = T^-1 / s: Eigen 3.4's triangular solve of the expression (s T) ignored s.
-          const Eigen::Matrix4d inverse =
-              triangle.triangularView<Eigen::Lower>().solve(Eigen::Matrix4d::Identity()) / half_scale;
+          Eigen::Matrix4d inverse = Eigen::Matrix4d::Zero();
+          inverse.topLeftCorner(width, width) =
+              triangle.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(width, width)) / half_scale;
           float* panel = panel_inverses.data() + static_cast<size_t>(kPanelInverseFloats) * (first_panel[s] + k);
           Eigen::Map<Eigen::Matrix4f> forward(panel), backward(panel + 16);
           forward = inverse.cast<float>();

@@ -21,10 +21,11 @@ struct HalfFactorView {
   const int* rows = nullptr;
   int num_supernodes = 0;
   const std::uint16_t* values = nullptr;  ///< followed by kHalfFactorPadding readable entries
-  /// For the k-th whole 4-column panel of supernode s (k < nc / 4, panel first_panel[s] + k): the
-  /// inverse M of its 4 x 4 lower triangle in float, by columns, then M^T by columns
-  /// (kPanelInverseFloats floats). The triangle is solved as one 4 x 4 product, not four
-  /// dependent divisions; the same M in both solves keeps the preconditioner symmetric.
+  /// For the k-th 4-column panel of supernode s (k < ceil(nc / 4), panel first_panel[s] + k; the
+  /// last one has nc % 4 columns when that is not 0): the inverse M of its lower triangle in float,
+  /// by columns, zero-padded to 4 x 4, then M^T by columns (kPanelInverseFloats floats). The
+  /// triangle is solved as one small product, not a chain of dependent divisions; the same M in
+  /// both solves keeps the preconditioner symmetric.
   const float* panel_inverses = nullptr;
   const int* first_panel = nullptr;
 };

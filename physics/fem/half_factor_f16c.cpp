@@ -50,8 +50,6 @@ inline vf LoadTail(const float* p, Tail mask) { return _mm256_maskload_ps(p, mas
 inline void StoreTail(float* p, Tail mask, vf v) { _mm256_maskstore_ps(p, mask, v); }
 inline vf KeepTail(vf v, Tail mask) { return _mm256_and_ps(v, _mm256_castsi256_ps(mask)); }
 
-inline float Load1(const std::uint16_t* p) { return _cvtsh_ss(*p); }
-
 // Row i of column j of a packed supernode (half_factor.h) is Column(l, nr, j)[i], for i >= j.
 inline const std::uint16_t* Column(const std::uint16_t* l, int nr, int j) {
   return l + static_cast<std::ptrdiff_t>(j) * nr - static_cast<std::ptrdiff_t>(j) * (j + 1) / 2;
@@ -66,26 +64,19 @@ inline __m128 PanelTimes(const float* m, __m128 v) {
   return _mm_add_ps(low, high);
 }
 
-// y[0..n) += a * l[0..n)
-inline void Axpy(float a, const std::uint16_t* l, float* y, int n) {
-  const vf va = Splat(a);
-  int i = 0;
-  for (; i + W <= n; i += W) Store(y + i, Fma(va, LoadHalf(l + i), Load(y + i)));
-  for (; i < n; ++i) y[i] += a * Load1(l + i);
-}
-
-// l[0..n) . y[0..n)
-inline float Dot(const std::uint16_t* l, const float* y, int n) {
-  vf acc0 = Zero(), acc1 = Zero();
-  int i = 0;
-  for (; i + 2 * W <= n; i += 2 * W) {
-    acc0 = Fma(LoadHalf(l + i), Load(y + i), acc0);
-    acc1 = Fma(LoadHalf(l + i + W), Load(y + i + W), acc1);
+// v <- M v (or M^T v) for the r x r leading block (r < 4) of a lower-triangular 4 x 4 M stored by
+// columns: the triangle of a supernode's last nc % 4 columns.
+inline void RemainderTimes(const float* m, int r, float* v, bool transposed) {
+  float out[3];
+  for (int i = 0; i < r; ++i) {
+    float sum = 0.0f;
+    if (transposed)
+      for (int k = i; k < r; ++k) sum += m[4 * i + k] * v[k];  // (M^T)(i, k) = M(k, i)
+    else
+      for (int k = 0; k <= i; ++k) sum += m[4 * k + i] * v[k];
+    out[i] = sum;
   }
-  for (; i + W <= n; i += W) acc0 = Fma(LoadHalf(l + i), Load(y + i), acc0);
-  float s = Sum(acc0 + acc1);
-  for (; i < n; ++i) s += Load1(l + i) * y[i];
-  return s;
+  for (int i = 0; i < r; ++i) v[i] = out[i];
 }
 
 // y[0..n) += sum_c a[c] l_c[0..n) for C columns l_c = Column(l, nr, j + c) + row: y is read and
@@ -136,7 +127,7 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
     const std::uint16_t* l = f.values + f.px[s];
     float* ys = y + k0;
     // Diagonal block, four columns at a time: their 4 x 4 triangle by its stored inverse (no chain
-    // of divisions), then the rows below it; the last nc % 4 columns one by one.
+    // of divisions), then the rows below it; the last nc % 4 columns' triangle by its inverse too.
     const int panels = nc / 4 * 4;
     const float* inverse = f.panel_inverses + kPanelInverseFloats * f.first_panel[s];
     for (int j0 = 0; j0 < panels; j0 += 4, inverse += kPanelInverseFloats) {
@@ -146,18 +137,26 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
       _mm_store_ps(minus, _mm_sub_ps(_mm_setzero_ps(), z));
       AxpyColumns<4>(minus, l, nr, j0, j0 + 4, ys + j0 + 4, nc - j0 - 4);
     }
-    for (int j = panels; j < nc; ++j) {
-      const std::uint16_t* column = Column(l, nr, j);
-      ys[j] /= Load1(column + j);
-      Axpy(-ys[j], column + j + 1, ys + j + 1, nc - j - 1);
-    }
+    if (panels < nc) RemainderTimes(inverse, nc - panels, ys + panels, false);
     const int below = nr - nc;
     if (below == 0) continue;
     for (int i = 0; i < below; ++i) gathered[i] = 0.0f;
     int j = 0;
     for (; j + 8 <= nc; j += 8) AxpyColumns<8>(ys + j, l, nr, j, nc, gathered, below);
     for (; j + 4 <= nc; j += 4) AxpyColumns<4>(ys + j, l, nr, j, nc, gathered, below);
-    for (; j < nc; ++j) Axpy(ys[j], Column(l, nr, j) + nc, gathered, below);
+    switch (nc - j) {  // the last 1-3 columns in one pass too
+      case 3:
+        AxpyColumns<3>(ys + j, l, nr, j, nc, gathered, below);
+        break;
+      case 2:
+        AxpyColumns<2>(ys + j, l, nr, j, nc, gathered, below);
+        break;
+      case 1:
+        AxpyColumns<1>(ys + j, l, nr, j, nc, gathered, below);
+        break;
+      default:
+        break;
+    }
     const int* rows = f.rows + f.pi[s] + nc;
     for (int i = 0; i < below; ++i) y[rows[i]] -= gathered[i];
   }
@@ -180,16 +179,27 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
         DotColumns<4>(l, nr, j, nc, gathered, below, dots);
         for (int c = 0; c < 4; ++c) ys[j + c] -= dots[c];
       }
-      for (; j < nc; ++j) ys[j] -= Dot(Column(l, nr, j) + nc, gathered, below);
+      if (j < nc) {  // the last 1-3 columns in one pass too
+        float dots[3];
+        switch (nc - j) {
+          case 3:
+            DotColumns<3>(l, nr, j, nc, gathered, below, dots);
+            break;
+          case 2:
+            DotColumns<2>(l, nr, j, nc, gathered, below, dots);
+            break;
+          default:
+            DotColumns<1>(l, nr, j, nc, gathered, below, dots);
+            break;
+        }
+        for (int c = 0; c < nc - j; ++c) ys[j + c] -= dots[c];
+      }
     }
-    // Diagonal block transposed: the columns past the last whole panel one by one, then the panels
-    // from the last: dots with the solved rows below them, then their triangle's inverse transposed.
+    // Diagonal block transposed: the last nc % 4 columns' triangle, then the panels from the last:
+    // dots with the solved rows below them, then their triangle's inverse transposed.
     const int panels = nc / 4 * 4;
-    for (int j = nc - 1; j >= panels; --j) {
-      const std::uint16_t* column = Column(l, nr, j);
-      ys[j] = (ys[j] - Dot(column + j + 1, ys + j + 1, nc - j - 1)) / Load1(column + j);
-    }
     const float* inverse = f.panel_inverses + kPanelInverseFloats * (f.first_panel[s] + panels / 4);
+    if (panels < nc) RemainderTimes(inverse, nc - panels, ys + panels, true);
     for (int j0 = panels - 4; j0 >= 0; j0 -= 4) {
       inverse -= kPanelInverseFloats;
       alignas(16) float dots[4];

@@ -71,7 +71,7 @@ TEST(CholmodSolverTest, HalfPrecisionSolveAgreesWithTheDoubleSolveToHalfAccuracy
     cholesky.SolveSinglePrecision(b, half);
     const double error = (half - exact).norm() / exact.norm();
     std::printf("half-precision factor, system scaled by %g: relative error %.2e\n", scale, error);
-    // ~2.3e-4 (the diagonal 4 x 4 triangles are inverted in float; all half: ~4.5e-4).
+    // ~2.0e-4 (the diagonal triangles are inverted in float; all half: ~4.5e-4).
     EXPECT_LT(error, 1e-3) << "scale " << scale;
     EXPECT_GT(error, 1e-5) << "scale " << scale;  // not the float copy
   }
