@@ -119,6 +119,28 @@ inline void DotColumns(const std::uint16_t* l, int nr, int j, int row, const flo
   for (int c = 0; c < C; ++c) out[c] = Sum(sum[c]);
 }
 
+// group.template operator()<C>(j) for the columns [0, nc) in groups of C = 8, then 4, then the
+// last 1-3 together: each group's rows below are read and written once.
+template <typename Group>
+inline void ForColumnGroups(int nc, Group&& group) {
+  int j = 0;
+  for (; j + 8 <= nc; j += 8) group.template operator()<8>(j);
+  for (; j + 4 <= nc; j += 4) group.template operator()<4>(j);
+  switch (nc - j) {
+    case 3:
+      group.template operator()<3>(j);
+      break;
+    case 2:
+      group.template operator()<2>(j);
+      break;
+    case 1:
+      group.template operator()<1>(j);
+      break;
+    default:
+      break;
+  }
+}
+
 }  // namespace
 
 void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
@@ -141,22 +163,7 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
     const int below = nr - nc;
     if (below == 0) continue;
     for (int i = 0; i < below; ++i) gathered[i] = 0.0f;
-    int j = 0;
-    for (; j + 8 <= nc; j += 8) AxpyColumns<8>(ys + j, l, nr, j, nc, gathered, below);
-    for (; j + 4 <= nc; j += 4) AxpyColumns<4>(ys + j, l, nr, j, nc, gathered, below);
-    switch (nc - j) {  // the last 1-3 columns in one pass too
-      case 3:
-        AxpyColumns<3>(ys + j, l, nr, j, nc, gathered, below);
-        break;
-      case 2:
-        AxpyColumns<2>(ys + j, l, nr, j, nc, gathered, below);
-        break;
-      case 1:
-        AxpyColumns<1>(ys + j, l, nr, j, nc, gathered, below);
-        break;
-      default:
-        break;
-    }
+    ForColumnGroups(nc, [&]<int C>(int j) { AxpyColumns<C>(ys + j, l, nr, j, nc, gathered, below); });
     const int* rows = f.rows + f.pi[s] + nc;
     for (int i = 0; i < below; ++i) y[rows[i]] -= gathered[i];
   }
@@ -168,32 +175,11 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
     if (below > 0) {
       const int* rows = f.rows + f.pi[s] + nc;
       for (int i = 0; i < below; ++i) gathered[i] = y[rows[i]];
-      int j = 0;
-      for (; j + 8 <= nc; j += 8) {
-        float dots[8];
-        DotColumns<8>(l, nr, j, nc, gathered, below, dots);
-        for (int c = 0; c < 8; ++c) ys[j + c] -= dots[c];
-      }
-      for (; j + 4 <= nc; j += 4) {
-        float dots[4];
-        DotColumns<4>(l, nr, j, nc, gathered, below, dots);
-        for (int c = 0; c < 4; ++c) ys[j + c] -= dots[c];
-      }
-      if (j < nc) {  // the last 1-3 columns in one pass too
-        float dots[3];
-        switch (nc - j) {
-          case 3:
-            DotColumns<3>(l, nr, j, nc, gathered, below, dots);
-            break;
-          case 2:
-            DotColumns<2>(l, nr, j, nc, gathered, below, dots);
-            break;
-          default:
-            DotColumns<1>(l, nr, j, nc, gathered, below, dots);
-            break;
-        }
-        for (int c = 0; c < nc - j; ++c) ys[j + c] -= dots[c];
-      }
+      ForColumnGroups(nc, [&]<int C>(int j) {
+        float dots[C];
+        DotColumns<C>(l, nr, j, nc, gathered, below, dots);
+        for (int c = 0; c < C; ++c) ys[j + c] -= dots[c];
+      });
     }
     // Diagonal block transposed: the last nc % 4 columns' triangle, then the panels from the last:
     // dots with the solved rows below them, then their triangle's inverse transposed.
