@@ -3,7 +3,8 @@
 // advanced together by one input frame per physics step (ARCHITECTURE.md's step order, then
 // fx). The hook's pedal burns what its tip touches: membrane elements within its radius first
 // (they fade and, once all of a spring's are gone, the spring is cut), else the liver or the
-// gallbladder wall (damage). Deterministic: the same inputs give bit-identical states.
+// gallbladder wall (damage). Deterministic: the same inputs give bit-identical states. While a
+// session lives the process's dense algebra (OpenBLAS) runs on one thread.
 
 #include <memory>
 
@@ -11,6 +12,7 @@
 #include "app/render/render_frame.h"
 #include "device/input/input_frame.h"
 #include "fx/cautery_effects.h"
+#include "physics/bem/dense_lu_solve.h"
 #include "physics/scene/dissection_scene.h"
 
 namespace vesica::app {
@@ -44,6 +46,11 @@ class DissectionSession {
  private:
   fx::CauteryContact CauteryContactFor(const physics::ToolTouch& touch, bool pedal) const;
 
+  // One dense-algebra thread while the session lives (the scene's background refactorisations
+  // after cuts call OpenBLAS; its spinning idle workers would take the physics, haptic and render
+  // threads' cores: replay p99 step 55 -> 13 ms on the 2-core machine). First member: the scene's
+  // constructor factorises already.
+  physics::ScopedDenseLinearAlgebraThreads dense_algebra_threads_{1};
   std::shared_ptr<const physics::DissectionModel> model_;
   physics::DissectionScene scene_;
   fx::CauteryEffects cautery_;

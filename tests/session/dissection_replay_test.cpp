@@ -103,6 +103,17 @@ TEST_F(DissectionReplayTest, CommittedRecordingFreesTheGallbladderTwiceBitIdenti
   EXPECT_EQ(a.outcome.gallbladder_free_at_s, b2.outcome.gallbladder_free_at_s);
 }
 
+TEST_F(DissectionReplayTest, SessionRunsTheDenseAlgebraOnOneThreadAndRestoresItsCount) {
+  // OpenBLAS's idle workers spin after each background refactorisation: on the 2-core trainer
+  // they took the physics thread's core (replay p99 step 55 ms instead of 13 ms).
+  physics::SetDenseLinearAlgebraThreads(2);
+  {
+    DissectionSession session(model_, DefaultCauteryParams());
+    EXPECT_EQ(physics::DenseLinearAlgebraThreads(), 1);
+  }
+  EXPECT_EQ(physics::DenseLinearAlgebraThreads(), 2);
+}
+
 TEST_F(DissectionReplayTest, BadPoseIsRejectedAndTheSessionGoesOn) {
   DissectionSession session(model_, DefaultCauteryParams());
   device::InputFrame f;
