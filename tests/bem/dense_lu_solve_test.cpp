@@ -36,6 +36,7 @@ TEST(DenseLuSolveTest, SingularSystemThrowsNamingIt) {
 }
 
 TEST(DenseLuSolveTest, ScopedThreadLimitHoldsForItsLifetimeAndRestores) {
+  const int original = DenseLinearAlgebraThreads();
   SetDenseLinearAlgebraThreads(3);
   ASSERT_EQ(DenseLinearAlgebraThreads(), 3);
   {
@@ -50,6 +51,7 @@ TEST(DenseLuSolveTest, ScopedThreadLimitHoldsForItsLifetimeAndRestores) {
   EXPECT_EQ(DenseLinearAlgebraThreads(), 3);
   SetDenseLinearAlgebraThreads(0);  // clamped: at least one thread
   EXPECT_EQ(DenseLinearAlgebraThreads(), 1);
+  SetDenseLinearAlgebraThreads(original);  // the tests after this one in the process
 }
 
 }  // namespace

@@ -106,12 +106,14 @@ TEST_F(DissectionReplayTest, CommittedRecordingFreesTheGallbladderTwiceBitIdenti
 TEST_F(DissectionReplayTest, SessionRunsTheDenseAlgebraOnOneThreadAndRestoresItsCount) {
   // OpenBLAS's idle workers spin after each background refactorisation: on the 2-core trainer
   // they took the physics thread's core (replay p99 step 55 ms instead of 13 ms).
+  const int original = physics::DenseLinearAlgebraThreads();
   physics::SetDenseLinearAlgebraThreads(2);
   {
     DissectionSession session(model_, DefaultCauteryParams());
     EXPECT_EQ(physics::DenseLinearAlgebraThreads(), 1);
   }
   EXPECT_EQ(physics::DenseLinearAlgebraThreads(), 2);
+  physics::SetDenseLinearAlgebraThreads(original);
 }
 
 TEST_F(DissectionReplayTest, BadPoseIsRejectedAndTheSessionGoesOn) {
