@@ -1,5 +1,7 @@
 #include "physics/fem/cholmod_solver.h"
 
+#include <dlfcn.h>
+
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCore>
 #include <algorithm>
@@ -20,6 +22,34 @@ struct FactorAccess : Decomposition {
   static const cholmod_factor* Of(const Decomposition& d) {
     return static_cast<const FactorAccess&>(d).m_cholmodFactor;
   }
+};
+
+// CHOLMOD 5.12 runs small loops of its supernodal factorisation in OpenMP regions of a fixed 4
+// threads (CHOLMOD_OMP_NUM_THREADS, compiled in: OMP_NUM_THREADS does not change it). On the 2-core
+// machine their fork and join cost 4x the factorisation (45 instead of 10 ms at 980 nodes). While
+// it lives, the calling thread's OpenMP regions are inactive (max active levels 0, a per-thread
+// setting), so CHOLMOD runs them serially; the previous level comes back after. Looked up at run
+// time: the OpenMP runtime is CHOLMOD's dependency, not ours, and a build without one needs nothing.
+class SerialCholmodRegions {
+ public:
+  SerialCholmodRegions() {
+    if (set_ && get_) {
+      previous_ = get_();
+      set_(0);
+    }
+  }
+  ~SerialCholmodRegions() {
+    if (set_ && get_) set_(previous_);
+  }
+  SerialCholmodRegions(const SerialCholmodRegions&) = delete;
+  SerialCholmodRegions& operator=(const SerialCholmodRegions&) = delete;
+
+ private:
+  using SetLevels = void (*)(int);
+  using GetLevels = int (*)();
+  inline static const SetLevels set_ = reinterpret_cast<SetLevels>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+  inline static const GetLevels get_ = reinterpret_cast<GetLevels>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+  int previous_ = 0;
 };
 
 // CHOLMOD stops an L L^T factorisation at the first non-positive pivot (minor < n), but its
@@ -191,7 +221,10 @@ bool CholmodSolver::Factorize(const SparsePattern& pattern, const Eigen::VectorX
     s.analysed = true;
   }
   std::copy(values.data(), values.data() + values.size(), s.matrix.valuePtr());
-  s.cholesky.factorize(s.matrix);
+  {
+    const SerialCholmodRegions serial;
+    s.cholesky.factorize(s.matrix);
+  }
   // Eigen 3.4 reports Success whatever CHOLMOD found.
   const cholmod_factor* l = FactorAccess::Of(s.cholesky);
   s.factorized = s.cholesky.info() == Eigen::Success && l && l->itype == CHOLMOD_INT && PositiveDefinite(*l);

@@ -1,9 +1,11 @@
 #include "physics/fem/cholmod_solver.h"
 
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "physics/fem/fem_model.h"
 #include "tests/fem/fem_test_support.h"
@@ -115,6 +117,37 @@ TEST(CholmodSolverTest, IndefiniteMatrixIsReportedNotFactorised) {
   CholmodSolver cholesky;
   EXPECT_FALSE(cholesky.Factorize(m.pattern, s, true));
   EXPECT_FALSE(cholesky.factorized());
+}
+
+int ThreadsOfThisProcess() {
+  int threads = 0;
+  for ([[maybe_unused]] const auto& task : std::filesystem::directory_iterator("/proc/self/task")) ++threads;
+  return threads;
+}
+
+// CHOLMOD 5.12 asks OpenMP for 4 threads in its supernodal loops whatever OMP_NUM_THREADS says; on
+// 2 cores their fork and join took 4x the factorisation. Ours runs them serially: no OpenMP worker
+// thread appears (libgomp keeps its workers, so a parallel region would leave them in /proc), the
+// factor is still right, and the caller's OpenMP setting comes back.
+TEST(CholmodSolverTest, FactorisationStartsNoOpenMpThreadsAndRestoresTheCallersSetting) {
+  using GetLevels = int (*)();
+  using SetLevels = void (*)(int);
+  const auto get_levels = reinterpret_cast<GetLevels>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+  const auto set_levels = reinterpret_cast<SetLevels>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+  ASSERT_NE(get_levels, nullptr) << "CHOLMOD's OpenMP runtime is not loaded: nothing to test";
+  set_levels(3);
+  const FemModel m = Box({20, 6, 6});  // supernodes wide enough for CHOLMOD's parallel loops
+  const Eigen::VectorXd s = SystemValues(m);
+  const int before = ThreadsOfThisProcess();
+  CholmodSolver cholesky;
+  ASSERT_TRUE(cholesky.Factorize(m.pattern, s));
+  ASSERT_TRUE(cholesky.Factorize(m.pattern, 2.0 * s));
+  EXPECT_EQ(ThreadsOfThisProcess(), before);
+  EXPECT_EQ(get_levels(), 3);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(m.num_dofs(), -1.0, 2.0);
+  Eigen::VectorXd x;
+  cholesky.Solve(b, x);
+  EXPECT_LT((2.0 * (PatternMatrix(m.pattern, s) * x) - b).norm(), 1e-12 * b.norm());
 }
 
 }  // namespace
