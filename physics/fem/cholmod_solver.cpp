@@ -238,6 +238,11 @@ bool CholmodSolver::half_storage() const { return impl_->has_single && impl_->si
 
 void CholmodSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const { x = impl_->cholesky.solve(b); }
 
+void CholmodSolver::Solve(const Eigen::Matrix<double, Eigen::Dynamic, 3>& b,
+                          Eigen::Matrix<double, Eigen::Dynamic, 3>& x) const {
+  x = impl_->cholesky.solve(b);
+}
+
 void CholmodSolver::SolveSinglePrecision(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   if (impl_->has_single)
     impl_->single.Solve(b, x);

@@ -2,9 +2,8 @@
 // Sparse Cholesky of a symmetric positive definite pattern matrix through SuiteSparse CHOLMOD.
 // The symbolic analysis is done once per pattern; numeric factorisations reuse it.
 
-#include <memory>
-
 #include <Eigen/Core>
+#include <memory>
 
 #include "physics/fem/sparse_pattern.h"
 
@@ -28,6 +27,9 @@ class CholmodSolver {
   bool half_storage() const;
   /// x = A^-1 b with the last successful factorisation.
   void Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  /// X = A^-1 B for several right-hand sides (3 columns: a node's unit forces) in one pass over the
+  /// factor.
+  void Solve(const Eigen::Matrix<double, Eigen::Dynamic, 3>& b, Eigen::Matrix<double, Eigen::Dynamic, 3>& x) const;
   /// x ~= A^-1 b with the float copy of L (relative error ~1e-6; ~1e-3 with the half copy): the
   /// solve is memory bound, and float halves the bytes read (half quarters them). Meant for
   /// preconditioning. Falls back to Solve when no float

@@ -48,18 +48,16 @@ using NodeBlock = Eigen::Matrix<double, Eigen::Dynamic, 3>;
 
 // Column block of S0^-1 for unit forces on the node's three dofs (fixed dofs: zero).
 NodeBlock SolveNodeColumns(const FemModel& m, const CholmodSolver& cholmod, int node) {
-  NodeBlock col(m.num_dofs(), 3);
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(m.num_dofs()), x;
+  // One solve with the three right-hand sides: it reads the factor once, not three times.
+  NodeBlock unit = NodeBlock::Zero(m.num_dofs(), 3);
+  for (int axis = 0; axis < 3; ++axis) unit(3 * node + axis, axis) = 1.0;
+  NodeBlock col;
+  cholmod.Solve(unit, col);
   for (int axis = 0; axis < 3; ++axis) {
-    const int dof = 3 * node + axis;
-    if (m.free_dofs[dof] == 0.0) {  // a fixed dof does not move under any force
-      col.col(axis).setZero();
-      continue;
-    }
-    e[dof] = 1.0;
-    cholmod.Solve(e, x);
-    e[dof] = 0.0;
-    col.col(axis) = x.cwiseProduct(m.free_dofs);
+    if (m.free_dofs[3 * node + axis] == 0.0)
+      col.col(axis).setZero();  // a fixed dof does not move under any force
+    else
+      col.col(axis) = col.col(axis).cwiseProduct(m.free_dofs);
   }
   return col;
 }
