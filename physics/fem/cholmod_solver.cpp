@@ -118,7 +118,7 @@ struct SingleFactor {
         for (int k = 0; 4 * k < nc; ++k) {  // the last panel may be narrower (nc % 4 columns)
           const int width = std::min(4, nc - 4 * k);
           const Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>> triangle(
-              block + static_cast<std::ptrdiff_t>(4 * k) * nr + 4 * k, width, width, Eigen::OuterStride<>(nr));
+              block + static_cast<std::ptrdiff_t>(4 * k) * (nr + 1), width, width, Eigen::OuterStride<>(nr));
           // (s T)^-1 = T^-1 / s: Eigen 3.4's triangular solve of the expression (s T) ignored s.
           Eigen::Matrix4d inverse = Eigen::Matrix4d::Zero();
           inverse.topLeftCorner(width, width) =
