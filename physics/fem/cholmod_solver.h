@@ -3,6 +3,7 @@
 // The symbolic analysis is done once per pattern; numeric factorisations reuse it.
 
 #include <Eigen/Core>
+#include <future>
 #include <memory>
 
 #include "physics/fem/sparse_pattern.h"
@@ -40,5 +41,8 @@ class CholmodSolver {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// A factor being computed on a worker thread; a null result: the matrix is not positive definite.
+using RestFactorFuture = std::shared_future<std::shared_ptr<const CholmodSolver>>;
 
 }  // namespace vesica::physics

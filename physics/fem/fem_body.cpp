@@ -40,10 +40,10 @@ struct FemBody::Workspace {
   int steps_since_factor = 0;
   // kRotatedFactorPcg: factor of the rest system and the nodes' rotations (quaternions x y z w
   // and matrices) that turn it into the current frame.
-  std::unique_ptr<CholmodSolver> rest_factor = std::make_unique<CholmodSolver>();
+  std::shared_ptr<const CholmodSolver> rest_factor;  // null until the first solve factorises
   // Attachments changed: the rest factor being computed on a worker, adopted when
   // steps_until_adopt reaches 0 (settings.rotated_factor_adopt_steps).
-  std::future<std::unique_ptr<CholmodSolver>> pending_rest_factor;
+  RestFactorFuture pending_rest_factor;
   int steps_until_adopt = 0;
   std::vector<Eigen::Vector4d> node_quaternions;
   std::vector<Eigen::Matrix3d> node_rotations;
@@ -91,6 +91,8 @@ void FemBody::SetExternalForces(const Eigen::VectorXd& f) {
   state_.external_force_N = f;
 }
 
+RestFactorFuture FemBody::PendingRestFactor() const { return work_->pending_rest_factor; }
+
 void FemBody::SetState(const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
   CheckVector(*model_, u, "displacement");
   CheckVector(*model_, v, "velocity");
@@ -110,19 +112,21 @@ void FemBody::SetAttachmentStiffness(const Eigen::VectorXd& stiffness, const Eig
   w.linear_system_built = false;
   w.factor_matches_system = false;
   const FemSettings& s = model_->settings;
-  if (s.solver == LinearSolverKind::kRotatedFactorPcg && s.rotated_factor_adopt_steps > 0 &&
+  if (s.solver == LinearSolverKind::kRotatedFactorPcg && s.rotated_factor_adopt_steps > 0 && w.rest_factor &&
       w.rest_factor->factorized()) {
     if (w.pending_rest_factor.valid()) w.pending_rest_factor.wait();  // superseded
     Eigen::VectorXd rest_system;
     SystemValuesFromTangent(model_->linear_stiffness_values, rest_system);
-    w.pending_rest_factor = std::async(
-        std::launch::async, [model = model_, values = std::move(rest_system)]() -> std::unique_ptr<CholmodSolver> {
-          auto factor = std::make_unique<CholmodSolver>();
-          if (!factor->Factorize(model->pattern, values, model->settings.rotated_factor_single_precision,
-                                 model->settings.rotated_factor_half_precision))
-            return nullptr;
-          return factor;
-        });
+    w.pending_rest_factor =
+        std::async(std::launch::async,
+                   [model = model_, values = std::move(rest_system)]() -> std::shared_ptr<const CholmodSolver> {
+                     auto factor = std::make_shared<CholmodSolver>();
+                     if (!factor->Factorize(model->pattern, values, model->settings.rotated_factor_single_precision,
+                                            model->settings.rotated_factor_half_precision))
+                       return nullptr;
+                     return factor;
+                   })
+            .share();
     w.steps_until_adopt = s.rotated_factor_adopt_steps;
     return;
   }
@@ -312,12 +316,14 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
         m.pattern, w.system_values, rhs, du,
         [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { w.cholmod.Solve(res, z); }, tolerance, max_iterations);
   } else if (s.solver == LinearSolverKind::kRotatedFactorPcg) {
-    if (!w.rest_factor->factorized() || w.force_refactor) {
+    if (!w.rest_factor || !w.rest_factor->factorized() || w.force_refactor) {
       Eigen::VectorXd rest_system;
       SystemValuesFromTangent(m.linear_stiffness_values, rest_system);
-      if (!w.rest_factor->Factorize(m.pattern, rest_system, s.rotated_factor_single_precision,
-                                    s.rotated_factor_half_precision))
+      auto factor = std::make_shared<CholmodSolver>();
+      if (!factor->Factorize(m.pattern, rest_system, s.rotated_factor_single_precision,
+                             s.rotated_factor_half_precision))
         return false;
+      w.rest_factor = std::move(factor);
       w.force_refactor = false;
     }
     UpdateNodeRotations();
@@ -457,7 +463,8 @@ StepReport FemBody::Step() {
   };
 
   if (w.pending_rest_factor.valid() && --w.steps_until_adopt <= 0) {
-    std::unique_ptr<CholmodSolver> factor = w.pending_rest_factor.get();
+    std::shared_ptr<const CholmodSolver> factor = w.pending_rest_factor.get();
+    w.pending_rest_factor = {};
     if (factor)
       w.rest_factor = std::move(factor);
     else

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "physics/fem/cholmod_solver.h"
 #include "physics/fem/fem_model.h"
 #include "physics/fem/fem_state.h"
 #include "physics/mesh/barycentric.h"
@@ -50,6 +51,11 @@ class FemBody {
   /// at the start of the step still come in through SetExternalForces. Throws FemError on wrong size,
   /// negative or non-finite entries. Zero vectors (the default) change nothing.
   void SetAttachmentStiffness(const Eigen::VectorXd& stiffness_N_per_m, const Eigen::VectorXd& damping_Ns_per_m);
+  /// kRotatedFactorPcg with rotated_factor_adopt_steps > 0: the factor of the rest system S0 (c_M M +
+  /// c_D D + K0 + the attachments just set) that SetAttachmentStiffness started on a worker thread,
+  /// until the step that adopts it; invalid otherwise. Others needing S0^-1 for the same
+  /// attachments (the scene's constraint compliance) share it instead of factorising again.
+  RestFactorFuture PendingRestFactor() const;
 
   /// One implicit step of settings.time_step_s. Never lets a non-finite value into the state.
   StepReport Step();

@@ -78,7 +78,7 @@ void DissectionScene::UpdateAttachments(bool in_background) {
   }
   gallbladder_.SetAttachmentStiffness(k, c);
   if (in_background && model_->settings.compliance_adopt_steps > 0) {
-    gallbladder_compliance_.BeginAttachments(k, c);
+    gallbladder_compliance_.BeginAttachments(k, c, gallbladder_.PendingRestFactor());  // one factorisation
     compliance_adopt_step_ = steps_ + model_->settings.compliance_adopt_steps;
   } else {
     gallbladder_compliance_.SetAttachments(k, c);

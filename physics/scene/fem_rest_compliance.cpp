@@ -37,8 +37,8 @@ Eigen::VectorXd RestSystemValues(const FemModel& m, const Eigen::VectorXd& k, co
   return values;
 }
 
-std::unique_ptr<CholmodSolver> FactorizeRestSystem(const FemModel& m, const Eigen::VectorXd& values) {
-  auto solver = std::make_unique<CholmodSolver>();
+std::shared_ptr<const CholmodSolver> FactorizeRestSystem(const FemModel& m, const Eigen::VectorXd& values) {
+  auto solver = std::make_shared<CholmodSolver>();
   if (!solver->Factorize(m.pattern, values))
     throw FemError(m.settings.body_name +
                    ": rest system matrix for the constraint compliance is not positive definite");
@@ -65,7 +65,7 @@ NodeBlock SolveNodeColumns(const FemModel& m, const CholmodSolver& cholmod, int 
 // What the worker of BeginAttachments hands back: the factor and the columns of the nodes asked
 // for since the Begin before (the grasped tet, the hook's contact: usually still in use).
 struct Refactored {
-  std::unique_ptr<CholmodSolver> cholmod;
+  std::shared_ptr<const CholmodSolver> cholmod;
   std::vector<std::pair<int, NodeBlock>> columns;
 };
 }  // namespace
@@ -73,7 +73,7 @@ struct Refactored {
 struct FemRestCompliance::Impl {
   std::shared_ptr<const FemModel> model;
   Eigen::VectorXd attachment_stiffness, attachment_damping;
-  std::unique_ptr<CholmodSolver> cholmod;  // null until the first factorisation
+  std::shared_ptr<const CholmodSolver> cholmod;  // null until the first factorisation
   bool factor_valid = false;
   std::vector<NodeBlock> columns;  // per node; empty = not computed
   std::vector<char> asked;         // per node: columns asked for since the last BeginAttachments
@@ -107,7 +107,7 @@ void FemRestCompliance::SetAttachments(const Eigen::VectorXd& k, const Eigen::Ve
   ++factorizations_;
 }
 
-void FemRestCompliance::BeginAttachments(const Eigen::VectorXd& k, const Eigen::VectorXd& c) {
+void FemRestCompliance::BeginAttachments(const Eigen::VectorXd& k, const Eigen::VectorXd& c, RestFactorFuture shared) {
   CheckAttachments(*impl_->model, k, c);
   AdoptAttachments();
   Impl& w = *impl_;
@@ -118,8 +118,13 @@ void FemRestCompliance::BeginAttachments(const Eigen::VectorXd& k, const Eigen::
   for (size_t node = 0; node < w.asked.size(); ++node)
     if (w.asked[node]) in_use.push_back(static_cast<int>(node));
   std::fill(w.asked.begin(), w.asked.end(), 0);
-  w.pending = std::async(std::launch::async, [model = w.model, values = RestSystemValues(*w.model, k, c), in_use] {
-    Refactored out{FactorizeRestSystem(*model, values), {}};
+  Eigen::VectorXd values;
+  if (!shared.valid()) values = RestSystemValues(*w.model, k, c);
+  w.pending = std::async(std::launch::async, [model = w.model, values = std::move(values), shared, in_use] {
+    Refactored out{shared.valid() ? shared.get() : FactorizeRestSystem(*model, values), {}};
+    if (!out.cholmod || !out.cholmod->factorized())
+      throw FemError(model->settings.body_name +
+                     ": rest system matrix for the constraint compliance is not positive definite");
     for (int node : in_use) out.columns.emplace_back(node, SolveNodeColumns(*model, *out.cholmod, node));
     return out;
   });

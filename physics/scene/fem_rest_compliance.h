@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "physics/fem/cholmod_solver.h"
 #include "physics/fem/fem_model.h"
 
 namespace vesica::physics {
@@ -28,7 +29,11 @@ class FemRestCompliance {
   /// SetAttachments without the wait: factorises S0 with the new attachments on a worker thread
   /// while NodeColumns goes on answering from the current factor until AdoptAttachments(). A
   /// Begin while one is pending first adopts that one. Throws as SetAttachments for bad sizes.
-  void BeginAttachments(const Eigen::VectorXd& stiffness_N_per_m, const Eigen::VectorXd& damping_Ns_per_m);
+  /// `shared`, when valid, is the same S0's factor already being computed elsewhere (the FEM body's
+  /// FemBody::PendingRestFactor() for the same attachments): the worker waits for it instead of
+  /// factorising S0 a second time.
+  void BeginAttachments(const Eigen::VectorXd& stiffness_N_per_m, const Eigen::VectorXd& damping_Ns_per_m,
+                        RestFactorFuture shared = {});
   /// Waits for the factorisation BeginAttachments started (usually long done) and answers from it
   /// from now on; cached columns start over. Nothing to do when none is pending. Throws FemError
   /// if that S0 is not positive definite (the current factor then stays).

@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <future>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "physics/fem/fem_body.h"
@@ -20,7 +22,8 @@ namespace {
 class FemRestComplianceTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    const TetrahedralMesh mesh = MakeBoxTetMesh(Eigen::Vector3d(0.04, 0.02, 0.02), Eigen::Vector3i(6, 3, 3));
+    mesh_ = MakeBoxTetMesh(Eigen::Vector3d(0.04, 0.02, 0.02), Eigen::Vector3i(6, 3, 3));
+    const TetrahedralMesh& mesh = mesh_;
     FemSettings s;
     s.body_name = "test gallbladder";
     s.material.youngs_modulus_Pa = 2300.0;
@@ -31,10 +34,9 @@ class FemRestComplianceTest : public ::testing::Test {
     s.time_step_s = 0.005;
     s.rayleigh_mass_per_s = 0.1;
     s.rayleigh_stiffness_s = 0.01;
-    std::vector<DirichletNode> fixed;
     for (int v = 0; v < mesh.num_vertices(); ++v)
-      if (mesh.vertices(v, 0) < 1e-9) fixed.push_back({v, {true, true, true}});
-    model_ = std::make_shared<const FemModel>(BuildFemModel(mesh, s, fixed));
+      if (mesh.vertices(v, 0) < 1e-9) fixed_.push_back({v, {true, true, true}});
+    model_ = std::make_shared<const FemModel>(BuildFemModel(mesh, s, fixed_));
     // Springs on the far half of the top face, as the connective tissue holds the gallbladder.
     k_.setZero(model_->num_dofs());
     c_.setZero(model_->num_dofs());
@@ -61,6 +63,8 @@ class FemRestComplianceTest : public ::testing::Test {
     return body.Compliance({at}).response;
   }
 
+  TetrahedralMesh mesh_;
+  std::vector<DirichletNode> fixed_;
   std::shared_ptr<const FemModel> model_;
   Eigen::VectorXd k_, c_;
   int node_ = -1;
@@ -101,6 +105,47 @@ TEST_F(FemRestComplianceTest, BackgroundRefactorAnswersFromTheOldFactorUntilAdop
   EXPECT_LT((compliance.NodeColumns(node_) - expected).norm(), 1e-9 * expected.norm());
   compliance.AdoptAttachments();  // nothing pending: nothing changes
   EXPECT_EQ(compliance.factorizations(), 2);
+}
+
+// The scene's path: the FEM body's worker factorises S0 for the new attachments once, and the
+// compliance's worker waits for that factor instead of factorising S0 again.
+TEST_F(FemRestComplianceTest, SharesTheBodysPendingRestFactor) {
+  FemSettings s = model_->settings;
+  s.element_model = ElementModel::kCorotational;
+  s.solver = LinearSolverKind::kRotatedFactorPcg;
+  const auto model = std::make_shared<const FemModel>(BuildFemModel(mesh_, s, fixed_));
+  FemBody body(model);
+  body.Step();  // factorises S0 without attachments
+  EXPECT_FALSE(body.PendingRestFactor().valid());
+  body.SetAttachmentStiffness(k_, c_);
+  const RestFactorFuture shared = body.PendingRestFactor();
+  ASSERT_TRUE(shared.valid());
+
+  FemRestCompliance compliance(model);
+  const Eigen::VectorXd none = Eigen::VectorXd::Zero(model->num_dofs());
+  compliance.SetAttachments(none, none);
+  compliance.BeginAttachments(k_, c_, shared);
+  compliance.AdoptAttachments();
+  EXPECT_EQ(shared.get().use_count(), 2);  // the future's and the compliance's: the same factor
+  FemRestCompliance own(model);
+  own.SetAttachments(k_, c_);
+  EXPECT_EQ(compliance.NodeColumns(node_), own.NodeColumns(node_));  // the same S0, bit for bit
+}
+
+TEST_F(FemRestComplianceTest, SharedFactorThatFailedIsReportedAtAdoption) {
+  FemRestCompliance compliance(model_);
+  compliance.SetAttachments(k_, c_);
+  const Eigen::MatrixXd before = compliance.NodeColumns(node_);
+  std::promise<std::shared_ptr<const CholmodSolver>> failed;
+  failed.set_value(nullptr);  // the body's worker found S0 not positive definite
+  compliance.BeginAttachments(k_, c_, failed.get_future().share());
+  try {
+    compliance.AdoptAttachments();
+    FAIL() << "a failed shared factor was adopted";
+  } catch (const FemError& e) {
+    EXPECT_NE(std::string(e.what()).find("test gallbladder"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(compliance.NodeColumns(node_), before);  // the current factor stays
 }
 
 TEST_F(FemRestComplianceTest, BadAttachmentsAreRejectedNamingTheBody) {
