@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 #include "physics/fem/half_factor.h"
@@ -200,6 +201,10 @@ struct CholmodSolver::Impl {
   bool analysed = false;
   bool factorized = false;
   bool has_single = false;
+  // The solves may come from several threads (a factor shared between the FEM body and the scene's
+  // compliance worker): CHOLMOD's solve writes its cholmod_common, the low-precision solve its
+  // work vectors. Two locks, so the two kinds never wait for each other.
+  mutable std::mutex cholmod_mutex, single_mutex;
 };
 
 CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
@@ -236,18 +241,24 @@ bool CholmodSolver::factorized() const { return impl_->factorized; }
 
 bool CholmodSolver::half_storage() const { return impl_->has_single && impl_->single.half; }
 
-void CholmodSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const { x = impl_->cholesky.solve(b); }
+void CholmodSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  const std::lock_guard lock(impl_->cholmod_mutex);
+  x = impl_->cholesky.solve(b);
+}
 
 void CholmodSolver::Solve(const Eigen::Matrix<double, Eigen::Dynamic, 3>& b,
                           Eigen::Matrix<double, Eigen::Dynamic, 3>& x) const {
+  const std::lock_guard lock(impl_->cholmod_mutex);
   x = impl_->cholesky.solve(b);
 }
 
 void CholmodSolver::SolveSinglePrecision(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-  if (impl_->has_single)
+  if (impl_->has_single) {
+    const std::lock_guard lock(impl_->single_mutex);
     impl_->single.Solve(b, x);
-  else
+  } else {
     Solve(b, x);
+  }
 }
 
 }  // namespace vesica::physics

@@ -26,7 +26,8 @@ class CholmodSolver {
   bool factorized() const;
   /// The low-precision copy is the half one (half_storage was asked for and the CPU has F16C).
   bool half_storage() const;
-  /// x = A^-1 b with the last successful factorisation.
+  /// x = A^-1 b with the last successful factorisation. The solves may be called from several
+  /// threads at once (not during Factorize).
   void Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
   /// X = A^-1 B for several right-hand sides (3 columns: a node's unit forces) in one pass over the
   /// factor.

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <thread>
+#include <vector>
 
 #include "physics/fem/fem_model.h"
 #include "tests/fem/fem_test_support.h"
@@ -54,6 +56,37 @@ TEST(CholmodSolverTest, ThreeColumnSolveMatchesThreeSingleSolves) {
     EXPECT_LT((x.col(c) - single).norm(), 1e-13 * single.norm()) << "column " << c;
     EXPECT_LT((PatternMatrix(m.pattern, s) * x.col(c) - b.col(c)).norm(), 1e-12 * b.col(c).norm()) << "column " << c;
   }
+}
+
+// A factor shared between threads (the FEM body's preconditioner and the scene's compliance
+// worker): concurrent solves of both kinds give the answers a lone thread gets, bit for bit.
+TEST(CholmodSolverTest, ConcurrentSolvesAgreeWithSerialOnes) {
+  const FemModel m = Box({28, 9, 9});  // supernodal: the half copy exists
+  CholmodSolver cholesky;
+  ASSERT_TRUE(cholesky.Factorize(m.pattern, SystemValues(m), true, true));
+  std::vector<Eigen::VectorXd> b(8);
+  std::vector<Eigen::VectorXd> exact(8), half(8);
+  for (int k = 0; k < 8; ++k) {
+    b[k] = Eigen::VectorXd::LinSpaced(m.num_dofs(), -1.0 - k, 2.0 + k);
+    cholesky.Solve(b[k], exact[k]);
+    cholesky.SolveSinglePrecision(b[k], half[k]);
+  }
+  auto run = [&](bool low_precision, int& mismatches) {
+    for (int round = 0; round < 20; ++round)
+      for (int k = 0; k < 8; ++k) {
+        Eigen::VectorXd x;
+        if (low_precision)
+          cholesky.SolveSinglePrecision(b[k], x);
+        else
+          cholesky.Solve(b[k], x);
+        if (x != (low_precision ? half[k] : exact[k])) ++mismatches;
+      }
+  };
+  int mismatches[4] = {0, 0, 0, 0};
+  std::thread t0([&] { run(true, mismatches[0]); }), t1([&] { run(true, mismatches[1]); });
+  std::thread t2([&] { run(false, mismatches[2]); }), t3([&] { run(false, mismatches[3]); });
+  t0.join(), t1.join(), t2.join(), t3.join();
+  for (int t = 0; t < 4; ++t) EXPECT_EQ(mismatches[t], 0) << "thread " << t;
 }
 
 // The float copy of a supernodal factor (the 2,900-node grid gets one) solves to float accuracy:
