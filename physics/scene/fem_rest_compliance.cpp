@@ -37,11 +37,13 @@ Eigen::VectorXd RestSystemValues(const FemModel& m, const Eigen::VectorXd& k, co
   return values;
 }
 
+FemError NotPositiveDefinite(const FemModel& m) {
+  return FemError(m.settings.body_name + ": rest system matrix for the constraint compliance is not positive definite");
+}
+
 std::shared_ptr<const CholmodSolver> FactorizeRestSystem(const FemModel& m, const Eigen::VectorXd& values) {
   auto solver = std::make_shared<CholmodSolver>();
-  if (!solver->Factorize(m.pattern, values))
-    throw FemError(m.settings.body_name +
-                   ": rest system matrix for the constraint compliance is not positive definite");
+  if (!solver->Factorize(m.pattern, values)) throw NotPositiveDefinite(m);
   return solver;
 }
 using NodeBlock = Eigen::Matrix<double, Eigen::Dynamic, 3>;
@@ -122,9 +124,7 @@ void FemRestCompliance::BeginAttachments(const Eigen::VectorXd& k, const Eigen::
   if (!shared.valid()) values = RestSystemValues(*w.model, k, c);
   w.pending = std::async(std::launch::async, [model = w.model, values = std::move(values), shared, in_use] {
     Refactored out{shared.valid() ? shared.get() : FactorizeRestSystem(*model, values), {}};
-    if (!out.cholmod || !out.cholmod->factorized())
-      throw FemError(model->settings.body_name +
-                     ": rest system matrix for the constraint compliance is not positive definite");
+    if (!out.cholmod || !out.cholmod->factorized()) throw NotPositiveDefinite(*model);
     for (int node : in_use) out.columns.emplace_back(node, SolveNodeColumns(*model, *out.cholmod, node));
     return out;
   });
