@@ -164,8 +164,6 @@ ElementPassArgs BatchArgs(const FemModel& m, const Eigen::VectorXd& x, double* r
   args.displacement = x.data();
   args.rotation_cache = rotation_cache;
   args.force = y;
-  args.block_slot = m.pattern.block_slot.data()->data();
-  args.column_stride = m.pattern.column_stride.data();
   return args;
 }
 
@@ -179,9 +177,15 @@ double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eig
   if (static_cast<int>(cache.size()) != m.rest_mesh.num_tets())
     cache.assign(m.rest_mesh.num_tets(), Eigen::Vector4d(0, 0, 0, 1));
   force->setZero(u.size());
-  if (tangent) tangent->setZero(m.pattern.structure.nonZeros());
   ElementPassArgs args = BatchArgs(m, u, cache.data()->data(), force->data());  // Vector4d: 4 packed doubles
-  args.tangent = tangent ? tangent->data() : nullptr;
+  if (tangent) {
+    tangent->resize(m.pattern.structure.nonZeros());  // the pass writes every value
+    args.tangent = tangent->data();
+    args.tangent_blocks = &m.tangent_blocks;
+    thread_local std::vector<double> corner_vectors;
+    corner_vectors.resize(static_cast<size_t>(kCornerVectorFields) * m.rest_mesh.num_tets());
+    args.corner_vectors = corner_vectors.data();
+  }
   if (turned_gradients) {
     turned_gradients->resize(TurnedGradientSize(m));
     args.turned_gradients_out = turned_gradients->data();
@@ -245,7 +249,8 @@ double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eig
     return LinearForces(model, u, tangent_values, internal_force_N);
   const ElementKernel kernel = ResolveElementKernel(model.settings.element_kernel);
   if (rotation_cache && kernel != ElementKernel::kScalar &&
-      model.element_batches.num_tets == model.rest_mesh.num_tets())
+      model.element_batches.num_tets == model.rest_mesh.num_tets() &&
+      (!tangent_values || model.tangent_blocks.num_pairs() > 0))
     return SimdCorotationalForces(model, kernel, u, tangent_values, internal_force_N, *rotation_cache,
                                   turned_gradients);
   return CorotationalForces(model, u, tangent_values, internal_force_N, rotation_cache);

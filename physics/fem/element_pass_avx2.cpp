@@ -6,6 +6,7 @@
 
 #include "physics/fem/element_batches.h"
 #include "physics/fem/element_pass_simd.h"
+#include "physics/fem/tangent_blocks.h"
 
 #pragma GCC push_options
 #pragma GCC target("avx2,fma")
@@ -26,10 +27,6 @@ inline vd Gather(const double* base, const int* idx) {
 }
 inline vd Sqrt(vd x) { return _mm256_sqrt_pd(x); }
 inline bool Any(vm m) { return _mm256_movemask_pd(__m256d(m)) != 0; }
-inline void AddTriplet(double* p, __m256d v) {
-  const __m256i three = _mm256_set_epi64x(0, -1, -1, -1);
-  _mm256_maskstore_pd(p, three, _mm256_add_pd(_mm256_maskload_pd(p, three), v));
-}
 
 #include "physics/fem/element_pass_kernel.inc"
 

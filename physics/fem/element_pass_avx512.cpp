@@ -6,6 +6,7 @@
 
 #include "physics/fem/element_batches.h"
 #include "physics/fem/element_pass_simd.h"
+#include "physics/fem/tangent_blocks.h"
 
 #pragma GCC push_options
 #pragma GCC target("avx512f,avx512dq,avx512vl,avx2,fma")
@@ -26,9 +27,6 @@ inline vd Gather(const double* base, const int* idx) {
 }
 inline vd Sqrt(vd x) { return _mm512_maskz_sqrt_pd(0xff, x); }
 inline bool Any(vm m) { return _mm512_test_epi64_mask(__m512i(m), __m512i(m)) != 0; }
-inline void AddTriplet(double* p, __m256d v) {
-  _mm256_mask_storeu_pd(p, 0x7, _mm256_add_pd(_mm256_maskz_loadu_pd(0x7, p), v));
-}
 
 #include "physics/fem/element_pass_kernel.inc"
 

@@ -8,6 +8,8 @@
 
 namespace vesica::physics {
 
+struct TangentBlocks;
+
 struct ElementPassArgs {
   const double* rest = nullptr;  ///< ElementBatches::rest
   const int* dofs = nullptr;     ///< ElementBatches::dofs
@@ -16,9 +18,11 @@ struct ElementPassArgs {
   const double* displacement = nullptr;  ///< u, 3n
   double* rotation_cache = nullptr;      ///< 4 per tet (x y z w), read and updated
   double* force = nullptr;               ///< 3n, zeroed by the caller, accumulated
-  double* tangent = nullptr;             ///< nnz pattern values, zeroed by the caller; null: skip
-  const int* block_slot = nullptr;       ///< SparsePattern::block_slot, 16 per tet
-  const int* column_stride = nullptr;    ///< SparsePattern::column_stride, per node
+  double* tangent = nullptr;             ///< nnz pattern values, all written; null: skip
+  /// With tangent: the model's node pairs (tangent_blocks.h) and a scratch array of
+  /// kCornerVectorFields doubles a tet for the corner vectors the pairs are assembled from.
+  const TangentBlocks* tangent_blocks = nullptr;
+  double* corner_vectors = nullptr;
   /// Turned shape gradients R grad N_b (b = 1..3, x y z) per tet in ElementBatches' block layout
   /// (kTurnedGradientFields fields a block): the pass writes them when non-null, the product reads
   /// them when non-null (else it turns the gradients by rotation_cache).

@@ -8,8 +8,7 @@
 
 namespace vesica::physics {
 
-Eigen::Map<const Eigen::SparseMatrix<double>> PatternMatrix(const SparsePattern& p,
-                                                            const Eigen::VectorXd& values) {
+Eigen::Map<const Eigen::SparseMatrix<double>> PatternMatrix(const SparsePattern& p, const Eigen::VectorXd& values) {
   const auto& s = p.structure;
   return {s.rows(), s.cols(), s.nonZeros(), s.outerIndexPtr(), s.innerIndexPtr(), values.data()};
 }
@@ -67,6 +66,8 @@ FemModel BuildFemModel(const TetrahedralMesh& mesh, const FemSettings& settings,
   }
 
   m.element_batches = BuildElementBatches(mesh, m.elements);
+  if (settings.element_model == ElementModel::kCorotational)
+    m.tangent_blocks = BuildTangentBlocks(mesh, m.pattern, m.elements, m.lame_mu_Pa);
 
   m.free_dofs = Eigen::VectorXd::Ones(3 * n);
   for (const DirichletNode& f : fixed_nodes) {

@@ -2,14 +2,14 @@
 // The const part of a FEM body (STYLE.md item 2): rest mesh, element data, mass, linear stiffness,
 // sparsity and Dirichlet set. Built once; FemBody keeps the per-step state apart.
 
+#include <Eigen/SparseCore>
 #include <array>
 #include <vector>
-
-#include <Eigen/SparseCore>
 
 #include "physics/fem/element_batches.h"
 #include "physics/fem/fem_settings.h"
 #include "physics/fem/sparse_pattern.h"
+#include "physics/fem/tangent_blocks.h"
 #include "physics/fem/tet_element.h"
 #include "physics/mesh/tetrahedral_mesh.h"
 
@@ -23,12 +23,14 @@ struct DirichletNode {
 
 struct FemModel {
   FemSettings settings;
-  TetrahedralMesh rest_mesh;          ///< metres
-  std::vector<TetElement> elements;   ///< one per tet
-  ElementBatches element_batches;     ///< the same, in SIMD blocks
+  TetrahedralMesh rest_mesh;         ///< metres
+  std::vector<TetElement> elements;  ///< one per tet
+  ElementBatches element_batches;    ///< the same, in SIMD blocks
   double lame_lambda_Pa = 0.0;
   double lame_mu_Pa = 0.0;
   SparsePattern pattern;
+  /// The pattern's blocks with their tets, for the SIMD pass's corotational tangent.
+  TangentBlocks tangent_blocks;
   /// Lumped mass per dof (3n, kg); always filled (gravity, kinetic energy with lumped mass).
   Eigen::VectorXd lumped_mass_kg;
   /// Consistent mass values in pattern order (nnz, kg); empty with MassModel::kLumped.
