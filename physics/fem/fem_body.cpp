@@ -1,6 +1,7 @@
 #include "physics/fem/fem_body.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <future>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include "physics/fem/elastic_forces.h"
 #include "physics/fem/fem_error.h"
 #include "physics/fem/increment_extrapolation.h"
+#include "physics/fem/local_block_correction.h"
 #include "physics/fem/pcg_solver.h"
 #include "physics/fem/time_integrator.h"
 
@@ -52,6 +54,10 @@ struct FemBody::Workspace {
   // with their rest volumes: the node rotations gather instead of scattering from every tet.
   std::vector<int> node_tet_begin, node_tets;
   std::vector<double> node_tet_volumes;
+  // Per node, 1 - |sum of its tets' aligned quaternions, volume-weighted| / their volume: 0 where
+  // its tets turn alike, larger where they turn apart (and the turned factor fits worst).
+  std::vector<double> node_rotation_spread;
+  LocalBlockCorrection local_correction;  // settings.rotated_factor_local_nodes
   Eigen::VectorXd rotated_residual, rotated_solution, smoothed_residual, correction, sweep_residual;
 };
 
@@ -255,6 +261,7 @@ void FemBody::UpdateNodeRotations() {
     w.node_quaternions.assign(nodes, Eigen::Vector4d(0, 0, 0, 1));
     w.node_rotations.assign(nodes, Eigen::Matrix3d::Identity());
     w.node_has_fixed_axis.assign(nodes, 0);
+    w.node_rotation_spread.assign(nodes, 0.0);
     for (int i : m.fixed_dofs) w.node_has_fixed_axis[i / 3] = 1;
     w.node_tet_begin.assign(nodes + 1, 0);
     for (int t = 0; t < tets; ++t)
@@ -275,12 +282,15 @@ void FemBody::UpdateNodeRotations() {
     if (w.node_has_fixed_axis[n]) continue;
     const Eigen::Vector4d last = w.node_quaternions[n];
     Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+    double volume = 0.0;
     for (int k = w.node_tet_begin[n]; k < w.node_tet_begin[n + 1]; ++k) {
       const Eigen::Vector4d& q = w.rotations[w.node_tets[k]];
       sum += (q.dot(last) < 0.0 ? -w.node_tet_volumes[k] : w.node_tet_volumes[k]) * q;
+      volume += w.node_tet_volumes[k];
     }
     const double norm = sum.norm();
     if (!(norm > 0.0)) continue;
+    w.node_rotation_spread[n] = std::max(0.0, 1.0 - norm / volume);
     w.node_quaternions[n] = sum / norm;
     w.node_rotations[n] = Eigen::Quaterniond(w.node_quaternions[n]).toRotationMatrix();
   }
@@ -330,6 +340,14 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
     w.float_sweeps = s.rotated_factor_gauss_seidel && s.rotated_factor_float_sweeps && FloatBlockRows::available();
     if (s.rotated_factor_gauss_seidel) w.jacobi.Compute(m.pattern, w.system_values);
     if (w.float_sweeps) w.float_rows.Update(m.pattern, w.system_values);
+    if (s.rotated_factor_local_nodes > 0 && !MatrixFree()) {
+      // Not positive definite on those nodes: S is not either, and PCG reports it.
+      if (!w.local_correction.Compute(m.pattern, w.system_values,
+                                      LargestSpreadNodes(w.node_rotation_spread, s.rotated_factor_local_nodes)))
+        w.local_correction.Clear();
+    } else {
+      w.local_correction.Clear();
+    }
     const int nodes = m.num_nodes();
     // z = R S0^-1 R^T res, R block diagonal (one rotation per node).
     auto apply_rotated_factor = [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
@@ -385,16 +403,25 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
               z += w.correction;
             }
             w.smoothed_residual = -w.smoothed_residual;
+            w.local_correction.Apply(w.smoothed_residual, z);
             apply_rotated_factor(w.smoothed_residual, w.correction);
             z += w.correction;
+            w.local_correction.ApplyAfter(w.smoothed_residual, w.correction, z);
             for (int sweep = 0; sweep < s.rotated_factor_sweeps; ++sweep) {
               if (w.float_sweeps)
                 BlockGaussSeidelSweep(w.float_rows, w.jacobi.inverse_blocks(), res, z, false);
               else
                 BlockGaussSeidelSweep(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z, false);
             }
-          } else {
+          } else if (w.local_correction.empty()) {
             apply_rotated_factor(res, z);
+          } else {  // local solve, rotated factor, local solve: symmetric too
+            z.setZero(res.size());
+            w.smoothed_residual = res;
+            w.local_correction.Apply(w.smoothed_residual, z);
+            apply_rotated_factor(w.smoothed_residual, w.correction);
+            z += w.correction;
+            w.local_correction.ApplyAfter(w.smoothed_residual, w.correction, z);
           }
         },
         tolerance, max_iterations, warm_start_product, &w.solution_product);
