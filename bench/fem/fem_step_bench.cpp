@@ -34,7 +34,7 @@ Eigen::Vector3i CellsForNodes(int nodes) {
 
 std::shared_ptr<FemModel> GallbladderModel(int nodes, ElementModel element, LinearSolverKind solver,
                                            int refresh_steps = 1, int max_iterations = 20, bool gauss_seidel = false,
-                                           int sweeps = 0) {
+                                           int sweeps = 0, double local_share = -1.0) {
   const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, CellsForNodes(nodes));
   FemSettings s;
   s.body_name = "gallbladder box";
@@ -46,6 +46,7 @@ std::shared_ptr<FemModel> GallbladderModel(int nodes, ElementModel element, Line
   s.pcg_max_iterations = max_iterations;
   s.rotated_factor_gauss_seidel = gauss_seidel;
   if (sweeps > 0) s.rotated_factor_sweeps = sweeps;  // 0: the default
+  if (local_share >= 0.0) s.rotated_factor_local_share = local_share;  // negative: the default
   s.time_step_s = 0.01;
   s.rayleigh_mass_per_s = 1.0;
   s.rayleigh_stiffness_s = 0.01;
@@ -56,8 +57,9 @@ std::shared_ptr<FemModel> GallbladderModel(int nodes, ElementModel element, Line
 }
 
 void BM_FemStep(benchmark::State& state, ElementModel element, LinearSolverKind solver, int nodes, int refresh_steps,
-                int max_iterations, bool gauss_seidel, int sweeps) {
-  const auto model = GallbladderModel(nodes, element, solver, refresh_steps, max_iterations, gauss_seidel, sweeps);
+                int max_iterations, bool gauss_seidel, int sweeps, double local_share) {
+  const auto model =
+      GallbladderModel(nodes, element, solver, refresh_steps, max_iterations, gauss_seidel, sweeps, local_share);
   FemBody body(model);
   const int grasped = model->num_nodes() - 1;
   Eigen::VectorXd pull = Eigen::VectorXd::Zero(model->num_dofs());
@@ -97,7 +99,8 @@ const bool kRegistered = [] {
       for (int nodes : kTable3Nodes) {
         const std::string name =
             std::string("BM_FemStep/") + element_name + "/" + solver_name + "/" + std::to_string(nodes);
-        WithMinimum(benchmark::RegisterBenchmark(name.c_str(), BM_FemStep, element, solver, nodes, 1, 20, false, 0))
+        WithMinimum(
+            benchmark::RegisterBenchmark(name.c_str(), BM_FemStep, element, solver, nodes, 1, 20, false, 0, -1.0))
             ->Unit(benchmark::kMillisecond)
             ->MinTime(0.2);
       }
@@ -106,7 +109,7 @@ const bool kRegistered = [] {
   for (int nodes : {310, 2865})
     benchmark::RegisterBenchmark(("BM_FemStep/corotational/cholmod_refresh10/" + std::to_string(nodes)).c_str(),
                                  BM_FemStep, ElementModel::kCorotational, LinearSolverKind::kCholmod, nodes, 10, 20,
-                                 false, 0)
+                                 false, 0, -1.0)
         ->Unit(benchmark::kMillisecond)
         ->MinTime(0.5);
   // Converged corotational steps: PCG (tolerance 1e-8, cap 100 so that every step converges)
@@ -118,15 +121,24 @@ const bool kRegistered = [] {
                                                 std::string(gauss_seidel ? "_gs/" : "/") + std::to_string(nodes))
                                                    .c_str(),
                                                BM_FemStep, ElementModel::kCorotational,
-                                               LinearSolverKind::kRotatedFactorPcg, nodes, 1, 100, gauss_seidel, 0))
+                                               LinearSolverKind::kRotatedFactorPcg, nodes, 1, 100, gauss_seidel, 0,
+                                               -1.0))
           ->Unit(benchmark::kMillisecond)
           ->Iterations(40);  // the same 40 steps from rest for both: later steps need more iterations
+  // The Gauss-Seidel variant without the exact solve on the nodes whose tets turn most apart
+  // (rotated_factor_local_share = 0; the rows above use the default share).
+  for (int nodes : {310, 2865})
+    WithMinimum(benchmark::RegisterBenchmark(
+                    ("BM_FemStep/corotational/rotated_factor_gs_nolocal/" + std::to_string(nodes)).c_str(), BM_FemStep,
+                    ElementModel::kCorotational, LinearSolverKind::kRotatedFactorPcg, nodes, 1, 100, true, 0, 0.0))
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(40);
   // The Gauss-Seidel variant with 2 and 3 sweeps a side (the rows above: the default, 1): fewer
   // iterations, each dearer.
   for (int sweeps : {2, 3})
     benchmark::RegisterBenchmark(
         ("BM_FemStep/corotational/rotated_factor_gs" + std::to_string(sweeps) + "/2865").c_str(), BM_FemStep,
-        ElementModel::kCorotational, LinearSolverKind::kRotatedFactorPcg, 2865, 1, 100, true, sweeps)
+        ElementModel::kCorotational, LinearSolverKind::kRotatedFactorPcg, 2865, 1, 100, true, sweeps, -1.0)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(40);
   for (int nodes : kTable3Nodes)

@@ -340,10 +340,12 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
     w.float_sweeps = s.rotated_factor_gauss_seidel && s.rotated_factor_float_sweeps && FloatBlockRows::available();
     if (s.rotated_factor_gauss_seidel) w.jacobi.Compute(m.pattern, w.system_values);
     if (w.float_sweeps) w.float_rows.Update(m.pattern, w.system_values);
-    if (s.rotated_factor_local_nodes > 0 && !MatrixFree()) {
+    const int local_nodes = std::min(s.rotated_factor_local_nodes_max,
+                                     static_cast<int>(std::lround(s.rotated_factor_local_share * m.num_nodes())));
+    if (local_nodes > 0 && !MatrixFree()) {
       // Not positive definite on those nodes: S is not either, and PCG reports it.
       if (!w.local_correction.Compute(m.pattern, w.system_values,
-                                      LargestSpreadNodes(w.node_rotation_spread, s.rotated_factor_local_nodes)))
+                                      LargestSpreadNodes(w.node_rotation_spread, local_nodes)))
         w.local_correction.Clear();
     } else {
       w.local_correction.Clear();

@@ -27,7 +27,10 @@ void ValidateSettings(const FemSettings& s) {
   check(s.pcg_max_iterations >= 1, "pcg_max_iterations", s.pcg_max_iterations, ">= 1");
   check(s.cholmod_refresh_steps >= 1, "cholmod_refresh_steps", s.cholmod_refresh_steps, ">= 1");
   check(s.rotated_factor_sweeps >= 1, "rotated_factor_sweeps", s.rotated_factor_sweeps, ">= 1");
-  check(s.rotated_factor_local_nodes >= 0, "rotated_factor_local_nodes", s.rotated_factor_local_nodes, ">= 0");
+  check(s.rotated_factor_local_share >= 0.0 && s.rotated_factor_local_share <= 1.0, "rotated_factor_local_share",
+        s.rotated_factor_local_share, "0 <= share <= 1");
+  check(s.rotated_factor_local_nodes_max >= 0, "rotated_factor_local_nodes_max", s.rotated_factor_local_nodes_max,
+        ">= 0");
   check(s.rotated_factor_adopt_steps >= 0, "rotated_factor_adopt_steps", s.rotated_factor_adopt_steps, ">= 0");
   check(s.max_energy_growth >= 1.0, "max_energy_growth", s.max_energy_growth, ">= 1");
   check(s.energy_floor_J >= 0.0, "energy_floor_J", s.energy_floor_J, ">= 0");

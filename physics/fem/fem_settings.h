@@ -90,11 +90,16 @@ struct FemSettings {
   /// it every step. Same steps to rounding.
   bool rotated_factor_matrix_free = true;
   /// kRotatedFactorPcg on an assembled system (the Gauss-Seidel variant, or matrix_free off): solve
-  /// exactly, before and after the rotated factor, on this many nodes where the node's tets turn
-  /// least alike (LocalBlockCorrection: a dense Cholesky of S there, each step). The turned rest
-  /// factor is poorest there (a grasped node, a sharp bend). On the 2,900-node gallbladder box 48
-  /// nodes take 8.3 -> 5.9 iterations a step. 0: none. >= 0.
-  int rotated_factor_local_nodes = 48;
+  /// exactly, before and after the rotated factor, on the nodes whose tets turn least alike
+  /// (LocalBlockCorrection: a dense Cholesky of S there, each step), where the turned rest factor
+  /// is poorest (a grasped node, a sharp bend): this share of the body's nodes, rounded, at most
+  /// rotated_factor_local_nodes_max. On the gallbladder box (docs/performance/fem.md, round 7) the
+  /// fastest counts were ~1/60 of the nodes: 16 of 980, 32 of 2,000, 48 of 2,900 (8.3 -> 5.9
+  /// iterations a step); at 300 nodes the 5 nodes neither help nor cost. In [0, 1]; 0: none.
+  double rotated_factor_local_share = 1.0 / 60.0;
+  /// The dense factorisation grows as the cube of the count: 64 nodes (192 dofs) cost about one
+  /// PCG iteration of the 2,900-node box. >= 0.
+  int rotated_factor_local_nodes_max = 64;
   ElementKernel element_kernel = ElementKernel::kAuto;
 
   /// Divergence guard: a step is rejected when its energy exceeds this factor times (energy

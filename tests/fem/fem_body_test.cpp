@@ -753,7 +753,8 @@ TEST(FemBodyTest, LocalSolvesWhereTetsTurnApartCutIterationsAndOnEveryNodeMakeOn
       s.rotated_factor_gauss_seidel = gauss_seidel;
       s.rotated_factor_matrix_free = false;
       s.rotated_factor_float_sweeps = false;  // float sweeps leave a float-accurate residual
-      s.rotated_factor_local_nodes = local_nodes[k];
+      s.rotated_factor_local_share = 1.0;
+      s.rotated_factor_local_nodes_max = local_nodes[k];
       s.pcg_max_iterations = 200;
       auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
       FemBody body(model);

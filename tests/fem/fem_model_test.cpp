@@ -84,9 +84,13 @@ TEST(FemModelTest, BadMaterialIsAnErrorNamingBodyAndField) {
   s.rotated_factor_sweeps = 0;
   EXPECT_NE(message(s).find("gallbladder: setting rotated_factor_sweeps = 0"), std::string::npos) << message(s);
   s.rotated_factor_sweeps = 1;
-  s.rotated_factor_local_nodes = -4;
-  EXPECT_NE(message(s).find("gallbladder: setting rotated_factor_local_nodes = -4"), std::string::npos) << message(s);
-  s.rotated_factor_local_nodes = 0;
+  s.rotated_factor_local_nodes_max = -4;
+  EXPECT_NE(message(s).find("gallbladder: setting rotated_factor_local_nodes_max = -4"), std::string::npos)
+      << message(s);
+  s.rotated_factor_local_nodes_max = 0;
+  s.rotated_factor_local_share = 1.5;
+  EXPECT_NE(message(s).find("gallbladder: setting rotated_factor_local_share = 1.5"), std::string::npos) << message(s);
+  s.rotated_factor_local_share = 0.0;
   s.rotated_factor_adopt_steps = -1;
   EXPECT_NE(message(s).find("gallbladder: setting rotated_factor_adopt_steps = -1"), std::string::npos) << message(s);
 }

@@ -64,8 +64,11 @@ TEST(LocalBlockCorrectionTest, OnSomeNodesItZeroesTheirResidualAndKeepsItZsResid
   local.Apply(r, z);
   EXPECT_LT((r - (b - system.dense * z)).norm(), 1e-12 * b.norm());  // r is still z's residual
   for (int node : some) EXPECT_LT(r.segment<3>(3 * node).norm(), 1e-12 * b.norm()) << node;
-  for (int i = 0; i < n; ++i)  // z moved on those nodes only
-    if (i / 3 != 7 && i / 3 != 3 && i / 3 != 12) EXPECT_EQ(z[i], z_before[i]) << i;
+  for (int i = 0; i < n; ++i) {  // z moved on those nodes only
+    if (i / 3 != 7 && i / 3 != 3 && i / 3 != 12) {
+      EXPECT_EQ(z[i], z_before[i]) << i;
+    }
+  }
   EXPECT_GT((z - z_before).norm(), 1e-6);
 
   // ApplyAfter: the same correction from the residual before c was added to z.
