@@ -66,7 +66,15 @@ poweroff -f
 INIT
 chmod +x "$work/init"
 
-timeout 300 "$uml" mem=256M root=/dev/root rootfstype=hostfs rootflags=/ rw \
+# VESICA_UML_PRELOAD: tests/uml/xstate_shim.cpp's library (CTest sets it), which lets this UML
+# restore floating-point state on hosts with a larger XSAVE area (AMX) than it was built for.
+preload=""
+if [ -n "${VESICA_UML_PRELOAD:-}" ]; then
+  [ -r "$VESICA_UML_PRELOAD" ] || { echo "run_in_uml: VESICA_UML_PRELOAD=$VESICA_UML_PRELOAD not readable" >&2; exit 2; }
+  preload=$VESICA_UML_PRELOAD
+fi
+if [ -n "$preload" ]; then set -- env LD_PRELOAD="$preload" "$uml"; else set -- "$uml"; fi
+timeout 300 "$@" mem=256M root=/dev/root rootfstype=hostfs rootflags=/ rw \
   init="$work/init" con=null con0=fd:0,fd:1 < /dev/null > "$work/uml-console.log" 2>&1
 cat "$log" 2>/dev/null; [ -n "${VESICA_UML_VERBOSE:-}" ] && cat "$work/uml-console.log"
 if [ ! -s "$status_file" ]; then
