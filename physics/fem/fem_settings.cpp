@@ -36,4 +36,9 @@ void ValidateSettings(const FemSettings& s) {
   check(s.energy_floor_J >= 0.0, "energy_floor_J", s.energy_floor_J, ">= 0");
 }
 
+bool TangentIsMatrixFree(const FemSettings& s) {
+  return s.element_model == ElementModel::kCorotational && s.solver == LinearSolverKind::kRotatedFactorPcg &&
+         !s.rotated_factor_gauss_seidel && s.rotated_factor_matrix_free;
+}
+
 }  // namespace vesica::physics

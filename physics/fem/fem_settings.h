@@ -111,4 +111,8 @@ struct FemSettings {
 /// Throws FemError naming the body and the field for out-of-range settings (material included).
 void ValidateSettings(const FemSettings& settings);
 
+/// True when a body with these settings applies its tangent element by element and never assembles
+/// it: corotational, kRotatedFactorPcg without the Gauss-Seidel sweeps, rotated_factor_matrix_free.
+bool TangentIsMatrixFree(const FemSettings& settings);
+
 }  // namespace vesica::physics

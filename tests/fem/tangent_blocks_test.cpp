@@ -103,5 +103,29 @@ TEST(TangentBlocksTest, AssembledTangentIsTheLinearStiffnessAtRestAndTurnsWithAR
   }
 }
 
+// Only bodies that assemble their tangent get the pair lists; a matrix-free one (the SOFA beam's
+// solver) never assembles it, and a tangent asked of it anyway is still right (the scalar pass).
+TEST(TangentBlocksTest, BuiltOnlyForBodiesThatAssembleTheTangent) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {4, 2, 2});
+  FemSettings s;
+  s.material = {2300.0, 0.45, 1000.0};
+  s.element_model = ElementModel::kCorotational;
+  s.solver = LinearSolverKind::kRotatedFactorPcg;
+  ASSERT_TRUE(TangentIsMatrixFree(s));
+  const FemModel matrix_free = BuildFemModel(mesh, s, {});
+  EXPECT_EQ(matrix_free.tangent_blocks.num_pairs(), 0);
+  s.rotated_factor_gauss_seidel = true;
+  ASSERT_FALSE(TangentIsMatrixFree(s));
+  const FemModel assembled = BuildFemModel(mesh, s, {});
+  EXPECT_EQ(assembled.tangent_blocks.num_pairs(),
+            (assembled.pattern.structure.nonZeros() / 9 + mesh.num_vertices()) / 2);
+  const Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(3 * mesh.num_vertices(), 0.0, 0.002);
+  Eigen::VectorXd k_free, k_assembled, f;
+  std::vector<Eigen::Vector4d> cache_free, cache_assembled;
+  ComputeElasticForces(matrix_free, u, &k_free, &f, &cache_free);
+  ComputeElasticForces(assembled, u, &k_assembled, &f, &cache_assembled);
+  EXPECT_LT((k_free - k_assembled).norm(), 1e-12 * k_assembled.norm());
+}
+
 }  // namespace
 }  // namespace vesica::physics
