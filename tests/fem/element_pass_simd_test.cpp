@@ -20,6 +20,7 @@ namespace vesica::physics {
 namespace {
 
 using testing::Clamp;
+using testing::GallbladderNewmarkSettings;
 using testing::NodesOnPlane;
 
 FemModel Box(const Eigen::Vector3i& cells, ElementKernel kernel) {
@@ -188,13 +189,7 @@ TEST(ElementPassSimdTest, BodyStepsMatchTheScalarPass) {
   for (LinearSolverKind solver : {LinearSolverKind::kCholmod, LinearSolverKind::kRotatedFactorPcg}) {
     std::vector<Eigen::VectorXd> reference;
     for (ElementKernel kernel : {ElementKernel::kScalar, kernels.back()}) {
-      FemSettings s;
-      s.element_model = ElementModel::kCorotational;
-      s.integrator = TimeIntegrator::kNewmark;
-      s.material = {2300.0, 0.45, 1000.0};
-      s.rayleigh_mass_per_s = 1.0;
-      s.rayleigh_stiffness_s = 0.01;
-      s.solver = solver;
+      FemSettings s = GallbladderNewmarkSettings(solver);
       s.rotated_factor_gauss_seidel = true;
       s.pcg_relative_tolerance = 1e-12;
       s.pcg_max_iterations = 200;

@@ -15,6 +15,7 @@ namespace vesica::physics {
 namespace {
 
 using testing::Clamp;
+using testing::GallbladderNewmarkSettings;
 using testing::NodesOnPlane;
 
 // A small clamped block whose modes are computed densely (the reference for the integrators).
@@ -581,13 +582,7 @@ TEST(FemBodyTest, StepEnergyFromTheSolverProductMatchesTheAssembledTangent) {
     if (mesh.vertices(n, 0) > 0.0) fixed.push_back({n, {false, false, true}});
   const std::vector<int> free_end = NodesOnPlane(mesh, 0, 0.08);
   for (bool gauss_seidel : {false, true}) {
-    FemSettings s;
-    s.element_model = ElementModel::kCorotational;
-    s.integrator = TimeIntegrator::kNewmark;
-    s.material = {2300.0, 0.45, 1000.0};
-    s.rayleigh_mass_per_s = 1.0;
-    s.rayleigh_stiffness_s = 0.01;
-    s.solver = LinearSolverKind::kRotatedFactorPcg;
+    FemSettings s = GallbladderNewmarkSettings(LinearSolverKind::kRotatedFactorPcg);
     s.rotated_factor_gauss_seidel = gauss_seidel;
     s.pcg_max_iterations = 200;  // tolerance: the default 1e-8
     auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, fixed));
@@ -743,13 +738,7 @@ TEST(FemBodyTest, LocalSolvesWhereTetsTurnApartCutIterationsAndOnEveryNodeMakeOn
     Eigen::VectorXd u[3];
     const int local_nodes[3] = {0, 16, mesh.num_vertices()};
     for (int k = 0; k < 3; ++k) {
-      FemSettings s;
-      s.element_model = ElementModel::kCorotational;
-      s.integrator = TimeIntegrator::kNewmark;
-      s.material = {2300.0, 0.45, 1000.0};
-      s.rayleigh_mass_per_s = 1.0;
-      s.rayleigh_stiffness_s = 0.01;
-      s.solver = LinearSolverKind::kRotatedFactorPcg;
+      FemSettings s = GallbladderNewmarkSettings(LinearSolverKind::kRotatedFactorPcg);
       s.rotated_factor_gauss_seidel = gauss_seidel;
       s.rotated_factor_matrix_free = false;
       s.rotated_factor_float_sweeps = false;  // float sweeps leave a float-accurate residual

@@ -48,6 +48,19 @@ inline Eigen::VectorXd PlaneTractionForces(const TetrahedralMesh& mesh, int axis
   return f;
 }
 
+/// A gallbladder-like body as the benchmarks step it: corotational, gallbladder material
+/// (2.3 kPa, nu 0.45, 1,000 kg/m^3), Newmark, Rayleigh damping 1 / 0.01; solver and the rest as given.
+inline FemSettings GallbladderNewmarkSettings(LinearSolverKind solver) {
+  FemSettings s;
+  s.element_model = ElementModel::kCorotational;
+  s.integrator = TimeIntegrator::kNewmark;
+  s.material = {2300.0, 0.45, 1000.0};
+  s.rayleigh_mass_per_s = 1.0;
+  s.rayleigh_stiffness_s = 0.01;
+  s.solver = solver;
+  return s;
+}
+
 /// The cantilever: L = 10, b = h = 1, E = 1000, nu = 0.3, x = 0 clamped.
 inline FemModel MakeCantilever(int cells_through_thickness, const FemSettings& base) {
   const int c = cells_through_thickness;
