@@ -13,6 +13,7 @@
 #include "physics/fem/increment_extrapolation.h"
 #include "physics/fem/local_block_correction.h"
 #include "physics/fem/pcg_solver.h"
+#include "physics/fem/rotated_factor_preconditioner.h"
 #include "physics/fem/time_integrator.h"
 
 namespace vesica::physics {
@@ -57,8 +58,8 @@ struct FemBody::Workspace {
   // Per node, 1 - |sum of its tets' aligned quaternions, volume-weighted| / their volume: 0 where
   // its tets turn alike, larger where they turn apart (and the turned factor fits worst).
   std::vector<double> node_rotation_spread;
-  LocalBlockCorrection local_correction;  // settings.rotated_factor_local_nodes
-  Eigen::VectorXd rotated_residual, rotated_solution, smoothed_residual, correction, sweep_residual;
+  LocalBlockCorrection local_correction;  // settings.rotated_factor_local_share
+  RotatedFactorPreconditioner preconditioner;
 };
 
 FemBody::FemBody(std::shared_ptr<const FemModel> model)
@@ -346,19 +347,6 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
     } else {
       w.local_correction.Clear();
     }
-    const int nodes = m.num_nodes();
-    // z = R S0^-1 R^T res, R block diagonal (one rotation per node).
-    auto apply_rotated_factor = [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
-      w.rotated_residual.resize(res.size());
-      for (int n = 0; n < nodes; ++n)
-        w.rotated_residual.segment<3>(3 * n) = w.node_rotations[n].transpose() * res.segment<3>(3 * n);
-      if (s.rotated_factor_single_precision)
-        w.rest_factor->SolveSinglePrecision(w.rotated_residual, w.rotated_solution);
-      else
-        w.rest_factor->Solve(w.rotated_residual, w.rotated_solution);
-      z.resize(res.size());
-      for (int n = 0; n < nodes; ++n) z.segment<3>(3 * n) = w.node_rotations[n] * w.rotated_solution.segment<3>(3 * n);
-    };
     const MatrixOperator system_times = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
       if (MatrixFree())
         SystemTimes(x, y);
@@ -379,50 +367,20 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
       w.warm_start_product *= alpha;
       warm_start_product = &w.warm_start_product;
     }
+    RotatedFactorParts parts;
+    parts.rest_factor = w.rest_factor.get();
+    parts.single_precision = s.rotated_factor_single_precision;
+    parts.node_rotations = &w.node_rotations;
+    parts.sweeps = s.rotated_factor_gauss_seidel ? s.rotated_factor_sweeps : 0;
+    parts.pattern = &m.pattern;
+    parts.system_values = &w.system_values;
+    parts.float_rows = w.float_sweeps ? &w.float_rows : nullptr;
+    parts.inverse_diagonal = &w.jacobi.inverse_blocks();
+    parts.local = &w.local_correction;
     r = SolvePcg(
         system_times, rhs, du,
-        [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) {
-          if (s.rotated_factor_gauss_seidel) {
-            // Forward block Gauss-Seidel sweeps (each with its residual -U delta from the same pass:
-            // a sweep from x adds delta = (D + L)^-1 r, and r - S delta = -U delta), rotated-factor
-            // correction, as many backward sweeps.
-            auto forward_from_zero = [&](const Eigen::VectorXd& r_in, Eigen::VectorXd& delta,
-                                         Eigen::VectorXd& u_delta) {
-              if (w.float_sweeps)
-                ForwardSweepFromZeroAndUpperTimes(w.float_rows, w.jacobi.inverse_blocks(), r_in, delta, u_delta);
-              else
-                ForwardSweepFromZeroAndUpperTimes(m.pattern, w.system_values, w.jacobi.inverse_blocks(), r_in, delta,
-                                                  u_delta);
-            };
-            forward_from_zero(res, z, w.smoothed_residual);
-            for (int sweep = 1; sweep < s.rotated_factor_sweeps; ++sweep) {
-              w.sweep_residual = -w.smoothed_residual;
-              forward_from_zero(w.sweep_residual, w.correction, w.smoothed_residual);
-              z += w.correction;
-            }
-            w.smoothed_residual = -w.smoothed_residual;
-            w.local_correction.Apply(w.smoothed_residual, z);
-            apply_rotated_factor(w.smoothed_residual, w.correction);
-            z += w.correction;
-            w.local_correction.ApplyAfter(w.smoothed_residual, w.correction, z);
-            for (int sweep = 0; sweep < s.rotated_factor_sweeps; ++sweep) {
-              if (w.float_sweeps)
-                BlockGaussSeidelSweep(w.float_rows, w.jacobi.inverse_blocks(), res, z, false);
-              else
-                BlockGaussSeidelSweep(m.pattern, w.system_values, w.jacobi.inverse_blocks(), res, z, false);
-            }
-          } else if (w.local_correction.empty()) {
-            apply_rotated_factor(res, z);
-          } else {  // local solve, rotated factor, local solve: symmetric too
-            z.setZero(res.size());
-            w.smoothed_residual = res;
-            w.local_correction.Apply(w.smoothed_residual, z);
-            apply_rotated_factor(w.smoothed_residual, w.correction);
-            z += w.correction;
-            w.local_correction.ApplyAfter(w.smoothed_residual, w.correction, z);
-          }
-        },
-        tolerance, max_iterations, warm_start_product, &w.solution_product);
+        [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { w.preconditioner.Apply(parts, res, z); }, tolerance,
+        max_iterations, warm_start_product, &w.solution_product);
     w.solution_product_valid = true;
   } else {
     w.jacobi.Compute(m.pattern, w.system_values);
