@@ -244,15 +244,15 @@ ElementKernel ResolveElementKernel(ElementKernel requested) {
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
                             Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
                             std::vector<double>* turned_gradients) {
+  const ElementKernel kernel = ResolveElementKernel(model.settings.element_kernel);
+  if (model.settings.element_model == ElementModel::kCorotational && rotation_cache &&
+      kernel != ElementKernel::kScalar && model.element_batches.num_tets == model.rest_mesh.num_tets() &&
+      (!tangent_values || model.tangent_blocks.num_pairs() > 0))  // writes every turned gradient: no clear
+    return SimdCorotationalForces(model, kernel, u, tangent_values, internal_force_N, *rotation_cache,
+                                  turned_gradients);
   if (turned_gradients) turned_gradients->clear();  // only the SIMD pass fills them
   if (model.settings.element_model == ElementModel::kLinear)
     return LinearForces(model, u, tangent_values, internal_force_N);
-  const ElementKernel kernel = ResolveElementKernel(model.settings.element_kernel);
-  if (rotation_cache && kernel != ElementKernel::kScalar &&
-      model.element_batches.num_tets == model.rest_mesh.num_tets() &&
-      (!tangent_values || model.tangent_blocks.num_pairs() > 0))
-    return SimdCorotationalForces(model, kernel, u, tangent_values, internal_force_N, *rotation_cache,
-                                  turned_gradients);
   return CorotationalForces(model, u, tangent_values, internal_force_N, rotation_cache);
 }
 
