@@ -72,7 +72,8 @@ struct FemSettings {
   /// rotated_factor_gauss_seidel: forward sweeps before the rotated factor and backward sweeps after
   /// it (as many of each; still symmetric). Each forward sweep after the first starts from the
   /// residual the previous one leaves (-U times its correction, from the same pass). >= 1. On the
-  /// 2,865-node gallbladder 2 sweeps take 6.3 iterations instead of 7.65, at the same step time.
+  /// 2,865-node gallbladder, with the local solves, 2 sweeps take 5.13 iterations instead of 5.38
+  /// and a dearer step (7.25 against 6.6-6.9 ms): one is the fastest.
   int rotated_factor_sweeps = 1;
   /// kRotatedFactorPcg, attachments changed (connective tissue cut) after the first step: the rest
   /// factor is refactorised on a worker thread and adopted this many steps later (a fixed step, so
@@ -97,8 +98,8 @@ struct FemSettings {
   /// fastest counts were ~1/60 of the nodes: 16 of 980, 32 of 2,000, 48 of 2,900 (8.3 -> 5.9
   /// iterations a step); at 300 nodes the 5 nodes neither help nor cost. In [0, 1]; 0: none.
   double rotated_factor_local_share = 1.0 / 60.0;
-  /// The dense factorisation grows as the cube of the count: 64 nodes (192 dofs) cost about one
-  /// PCG iteration of the 2,900-node box. >= 0.
+  /// The dense factorisation grows as the cube of the count: on the 2,900-node box 64 and 96 nodes
+  /// made the step slower than 48 (6.7-6.8 and 7.1-7.3 against 6.4 ms over 100 steps). >= 0.
   int rotated_factor_local_nodes_max = 64;
   ElementKernel element_kernel = ElementKernel::kAuto;
 
