@@ -2,8 +2,11 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 
 #include "physics/fem/block_rows_simd.h"
 #include "physics/fem/element_pass_simd.h"
@@ -76,7 +79,8 @@ Eigen::Matrix3d ElementRotation(const Eigen::Matrix3d& f, Eigen::Vector4d* q) {
 // = H), at a fraction of the cost; energy V (mu eps:eps + lambda tr(eps)^2 / 2). The tangent
 // blocks R K_ab R^T = V (lambda r_a r_b^T + mu r_b r_a^T + mu (g_a . g_b) I) with r_a = R g_a.
 double CorotationalForces(const FemModel& m, const Eigen::VectorXd& u, Eigen::VectorXd* tangent, Eigen::VectorXd* force,
-                          std::vector<Eigen::Vector4d>* cache) {
+                          std::vector<Eigen::Vector4d>* cache, double* smallest_turn_cosine) {
+  double smallest_cosine = cache ? 1.0 : 0.0;  // |q_before . q_after|; without a cache: unknown
   if (cache && static_cast<int>(cache->size()) != m.rest_mesh.num_tets())
     cache->assign(m.rest_mesh.num_tets(), Eigen::Vector4d(0, 0, 0, 1));
   const auto& mesh = m.rest_mesh;
@@ -97,7 +101,9 @@ double CorotationalForces(const FemModel& m, const Eigen::VectorXd& u, Eigen::Ve
     Eigen::Matrix3d ds;
     ds << x[1] - x[0], x[2] - x[0], x[3] - x[0];
     const Eigen::Matrix3d f = ds * e.rest_shape_inverse;
+    const Eigen::Vector4d q_before = cache ? (*cache)[t] : Eigen::Vector4d(0, 0, 0, 1);
     const Eigen::Matrix3d r = ElementRotation(f, cache ? &(*cache)[t] : nullptr);
+    if (cache) smallest_cosine = std::min(smallest_cosine, std::abs(q_before.dot((*cache)[t])));
     Eigen::Matrix3d eps = r.transpose() * f;
     eps = 0.5 * (eps + eps.transpose()).eval();
     eps.diagonal().array() -= 1.0;
@@ -132,6 +138,7 @@ double CorotationalForces(const FemModel& m, const Eigen::VectorXd& u, Eigen::Ve
           for (int row = 0; row < 3; ++row) out_ba[c * stride_a + row] += kr(c, row);
       }
   }
+  if (smallest_turn_cosine) *smallest_turn_cosine = smallest_cosine;
   return energy;
 }
 
@@ -173,7 +180,7 @@ size_t TurnedGradientSize(const FemModel& m) {
 
 double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eigen::VectorXd& u,
                               Eigen::VectorXd* tangent, Eigen::VectorXd* force, std::vector<Eigen::Vector4d>& cache,
-                              std::vector<double>* turned_gradients) {
+                              std::vector<double>* turned_gradients, double* smallest_turn_cosine) {
   if (static_cast<int>(cache.size()) != m.rest_mesh.num_tets())
     cache.assign(m.rest_mesh.num_tets(), Eigen::Vector4d(0, 0, 0, 1));
   force->setZero(u.size());
@@ -190,6 +197,7 @@ double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eig
     turned_gradients->resize(TurnedGradientSize(m));
     args.turned_gradients_out = turned_gradients->data();
   }
+  args.smallest_turn_cosine = smallest_turn_cosine;
   return kernel == ElementKernel::kAvx512 ? ElementPassAvx512(args) : ElementPassAvx2(args);
 }
 
@@ -243,17 +251,27 @@ ElementKernel ResolveElementKernel(ElementKernel requested) {
 
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
                             Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
-                            std::vector<double>* turned_gradients) {
+                            std::vector<double>* turned_gradients, double* largest_turn_rad) {
   const ElementKernel kernel = ResolveElementKernel(model.settings.element_kernel);
+  double smallest_turn_cosine = 1.0;  // |q_before . q_after| = cos(turn / 2)
+  double energy = 0.0;
   if (model.settings.element_model == ElementModel::kCorotational && rotation_cache &&
       kernel != ElementKernel::kScalar && model.element_batches.num_tets == model.rest_mesh.num_tets() &&
-      (!tangent_values || model.tangent_blocks.num_pairs() > 0))  // writes every turned gradient: no clear
-    return SimdCorotationalForces(model, kernel, u, tangent_values, internal_force_N, *rotation_cache,
-                                  turned_gradients);
-  if (turned_gradients) turned_gradients->clear();  // only the SIMD pass fills them
-  if (model.settings.element_model == ElementModel::kLinear)
-    return LinearForces(model, u, tangent_values, internal_force_N);
-  return CorotationalForces(model, u, tangent_values, internal_force_N, rotation_cache);
+      (!tangent_values || model.tangent_blocks.num_pairs() > 0)) {  // writes every turned gradient: no clear
+    energy = SimdCorotationalForces(model, kernel, u, tangent_values, internal_force_N, *rotation_cache,
+                                    turned_gradients, &smallest_turn_cosine);
+  } else {
+    if (turned_gradients) turned_gradients->clear();  // only the SIMD pass fills them
+    if (model.settings.element_model == ElementModel::kLinear)
+      energy = LinearForces(model, u, tangent_values, internal_force_N);
+    else
+      energy = CorotationalForces(model, u, tangent_values, internal_force_N, rotation_cache, &smallest_turn_cosine);
+  }
+  if (largest_turn_rad) {
+    *largest_turn_rad = smallest_turn_cosine > 0.0 ? 2.0 * std::acos(std::min(1.0, smallest_turn_cosine))
+                                                   : std::numeric_limits<double>::infinity();
+  }
+  return energy;
 }
 
 }  // namespace vesica::physics

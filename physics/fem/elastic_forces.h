@@ -22,9 +22,11 @@ ElementKernel ResolveElementKernel(ElementKernel requested);
 /// than an SVD per element; elements near inversion still go through the SVD. With a cache the pass
 /// runs model.settings.element_kernel (ResolveElementKernel). turned_gradients (optional, with a
 /// cache): the SIMD pass leaves R grad N_b there for CorotationalTangentTimes (emptied otherwise).
+/// largest_turn_rad (optional): the largest angle any tet turned since the cache was last written
+/// (0 for a linear body, +inf for a corotational one without a cache).
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
                             Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache = nullptr,
-                            std::vector<double>* turned_gradients = nullptr);
+                            std::vector<double>* turned_gradients = nullptr, double* largest_turn_rad = nullptr);
 
 /// y = K_t x for a corotational body without assembling K_t (the tangent ComputeElasticForces
 /// assembles, R K R^T per tet, at the rotations it left in rotation_cache), element by element

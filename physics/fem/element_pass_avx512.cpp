@@ -4,6 +4,8 @@
 
 #include <immintrin.h>
 
+#include <cmath>
+
 #include "physics/fem/element_batches.h"
 #include "physics/fem/element_pass_simd.h"
 #include "physics/fem/tangent_blocks.h"

@@ -28,6 +28,9 @@ struct ElementPassArgs {
   /// them when non-null (else it turns the gradients by rotation_cache).
   double* turned_gradients_out = nullptr;
   const double* turned_gradients = nullptr;
+  /// Pass only, optional: the smallest |q_before . q_after| over the tets, the cosine of half the
+  /// largest turn since the rotation cache was last written.
+  double* smallest_turn_cosine = nullptr;
 };
 
 /// The scalar pass's rotation rule for one element: the warm-started quaternion iteration where

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <future>
+#include <limits>
 #include <sstream>
 
 #include "physics/fem/attachment_springs.h"
@@ -48,6 +49,9 @@ struct FemBody::Workspace {
   // steps_until_adopt reaches 0 (settings.rotated_factor_adopt_steps).
   RestFactorFuture pending_rest_factor;
   int steps_until_adopt = 0;
+  // Sum of the element passes' largest tet turns since the node rotations were last computed
+  // (settings.rotated_factor_rotation_refresh_rad); infinite until the first time.
+  double rotation_drift_rad = std::numeric_limits<double>::infinity();
   std::vector<Eigen::Vector4d> node_quaternions;
   std::vector<Eigen::Matrix3d> node_rotations;
   std::vector<char> node_has_fixed_axis;
@@ -209,13 +213,18 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
   Workspace& w = *work_;
   const bool linear = s.element_model == ElementModel::kLinear;
   if (MatrixFree()) {  // forces and rotations only: the solver applies K_t element by element
-    w.elastic_energy = ComputeElasticForces(m, u, nullptr, &w.internal_force, &w.rotations, &w.turned_gradients);
+    double turn = 0.0;
+    w.elastic_energy =
+        ComputeElasticForces(m, u, nullptr, &w.internal_force, &w.rotations, &w.turned_gradients, &turn);
+    w.rotation_drift_rad += turn;
     w.system_assembled = true;
     return;
   }
   // A linear body's K never changes: copy it once, then only f = K u is needed.
+  double turn = 0.0;
   w.elastic_energy = ComputeElasticForces(m, u, (linear && w.linear_system_built) ? nullptr : &w.tangent_values,
-                                          &w.internal_force, &w.rotations);
+                                          &w.internal_force, &w.rotations, nullptr, &turn);
+  w.rotation_drift_rad += turn;
   w.system_assembled = true;
   if (linear && w.linear_system_built) return;
   SystemValuesFromTangent(w.tangent_values, w.system_values);
@@ -333,7 +342,10 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
       w.rest_factor = std::move(factor);
       w.force_refactor = false;
     }
-    UpdateNodeRotations();
+    if (w.rotation_drift_rad >= s.rotated_factor_rotation_refresh_rad) {
+      UpdateNodeRotations();
+      w.rotation_drift_rad = 0.0;
+    }
     w.float_sweeps = s.rotated_factor_gauss_seidel && s.rotated_factor_float_sweeps && FloatBlockRows::available();
     if (s.rotated_factor_gauss_seidel) w.jacobi.Compute(m.pattern, w.system_values);
     if (w.float_sweeps) w.float_rows.Update(m.pattern, w.system_values);

@@ -29,6 +29,8 @@ void ValidateSettings(const FemSettings& s) {
   check(s.rotated_factor_sweeps >= 1, "rotated_factor_sweeps", s.rotated_factor_sweeps, ">= 1");
   check(s.rotated_factor_local_share >= 0.0 && s.rotated_factor_local_share <= 1.0, "rotated_factor_local_share",
         s.rotated_factor_local_share, "0 <= share <= 1");
+  check(s.rotated_factor_rotation_refresh_rad >= 0.0 && std::isfinite(s.rotated_factor_rotation_refresh_rad),
+        "rotated_factor_rotation_refresh_rad", s.rotated_factor_rotation_refresh_rad, "finite, >= 0");
   check(s.rotated_factor_local_nodes_max >= 0, "rotated_factor_local_nodes_max", s.rotated_factor_local_nodes_max,
         ">= 0");
   check(s.rotated_factor_adopt_steps >= 0, "rotated_factor_adopt_steps", s.rotated_factor_adopt_steps, ">= 0");

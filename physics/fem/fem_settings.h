@@ -101,6 +101,15 @@ struct FemSettings {
   /// The dense factorisation grows as the cube of the count: on the 2,900-node box 64 and 96 nodes
   /// made the step slower than 48 (6.7-6.8 and 7.1-7.3 against 6.4 ms over 100 steps). >= 0.
   int rotated_factor_local_nodes_max = 64;
+  /// kRotatedFactorPcg: the nodes' rotations that turn the rest factor (a volume-weighted mean of
+  /// their tets' quaternions, a pass over every node's tets) are recomputed once the tets may have
+  /// turned this much since (the sum over element passes of the largest turn of any tet); they
+  /// only shape the preconditioner, so stale ones cost iterations, never accuracy. 0: every step.
+  /// >= 0, radians. The falling SOFA beam's nodes turn up to 0.006 rad a step: 0.03 recomputes them
+  /// 23 times in 200 steps (1.010 -> 1.020 iterations, ~0.1 ms a step less); the pulled
+  /// gallbladder box's turn 0.01-0.3 rad a step, recomputed 97 times in 100 steps (same
+  /// iterations). docs/performance/fem.md, round 8.
+  double rotated_factor_rotation_refresh_rad = 0.03;
   ElementKernel element_kernel = ElementKernel::kAuto;
 
   /// Divergence guard: a step is rejected when its energy exceeds this factor times (energy

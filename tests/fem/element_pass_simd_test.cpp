@@ -179,6 +179,65 @@ TEST(ElementPassSimdTest, RigidTurnGivesNoForceAndNoEnergy) {
   }
 }
 
+// The pass reports the largest turn of any tet since the rotation cache was written: a rigid turn
+// of 0.9 rad from the rest cache, none when repeated, then 0.4 rad more (about another axis) on
+// top of it; every kernel alike, and the SIMD kernels agree with the scalar one on a mesh with
+// inverted elements (whose lanes take the scalar rule). A linear body never turns.
+TEST(ElementPassSimdTest, ReportsTheLargestTurnSinceTheCacheWasWritten) {
+  std::vector<ElementKernel> kernels = SimdKernelsOfThisCpu();
+  kernels.push_back(ElementKernel::kScalar);
+  const Eigen::Matrix3d first = Eigen::AngleAxisd(0.9, Eigen::Vector3d(0.3, -1, 2).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d second =
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 0.5, 0).normalized()).toRotationMatrix() * first;
+  for (ElementKernel kernel : kernels) {
+    const FemModel m = Box({5, 2, 3}, kernel);  // 180 tets: not a multiple of 8
+    auto turned = [&](const Eigen::Matrix3d& r) {
+      Eigen::VectorXd u(m.num_dofs());
+      for (int i = 0; i < m.num_nodes(); ++i) {
+        const Eigen::Vector3d x = m.rest_mesh.vertices.row(i);
+        u.segment<3>(3 * i) = r * x - x;
+      }
+      return u;
+    };
+    const char* name = kernel == ElementKernel::kScalar ? "scalar" : Name(kernel);
+    std::vector<Eigen::Vector4d> cache;
+    Eigen::VectorXd f;
+    double turn = -1.0;
+    ComputeElasticForces(m, turned(first), nullptr, &f, &cache, nullptr, &turn);
+    EXPECT_NEAR(turn, 0.9, 1e-7) << name;
+    ComputeElasticForces(m, turned(first), nullptr, &f, &cache, nullptr, &turn);
+    EXPECT_NEAR(turn, 0.0, 1e-7) << name;
+    ComputeElasticForces(m, turned(second), nullptr, &f, &cache, nullptr, &turn);
+    EXPECT_NEAR(turn, 0.4, 1e-7) << name;
+    ComputeElasticForces(m, turned(second), nullptr, &f, nullptr, nullptr, &turn);
+    EXPECT_TRUE(std::isinf(turn)) << name << ": without a cache the turn is unknown";
+  }
+  // Inverted and near-inverted elements: the SIMD kernels' scalar lanes report their turns too.
+  const Eigen::Vector3i cells(7, 3, 3);
+  const FemModel scalar = Box(cells, ElementKernel::kScalar);
+  for (ElementKernel kernel : SimdKernelsOfThisCpu()) {
+    const FemModel simd = Box(cells, kernel);
+    std::vector<Eigen::Vector4d> scalar_cache, simd_cache;
+    Eigen::VectorXd f;
+    double scalar_turn = 0.0, simd_turn = 0.0;
+    for (double noise : {0.2, 0.9}) {
+      const Eigen::VectorXd u = Deformation(scalar, cells, 1.3, noise, 7);
+      ComputeElasticForces(scalar, u, nullptr, &f, &scalar_cache, nullptr, &scalar_turn);
+      ComputeElasticForces(simd, u, nullptr, &f, &simd_cache, nullptr, &simd_turn);
+      EXPECT_GT(simd_turn, 0.1) << Name(kernel) << " noise " << noise;
+      EXPECT_NEAR(simd_turn, scalar_turn, 1e-6) << Name(kernel) << " noise " << noise;
+    }
+  }
+  FemSettings linear;
+  linear.material = {2300.0, 0.45, 1000.0};
+  linear.element_model = ElementModel::kLinear;
+  const FemModel m = BuildFemModel(MakeBoxTetMesh({0.08, 0.03, 0.03}, {3, 2, 2}), linear, {});
+  Eigen::VectorXd f;
+  double turn = -1.0;
+  ComputeElasticForces(m, Eigen::VectorXd::Constant(m.num_dofs(), 0.01), nullptr, &f, nullptr, nullptr, &turn);
+  EXPECT_EQ(turn, 0.0);
+}
+
 // Whole bodies: the twisted, pulled box of FemBodyTest stepped with the scalar and the SIMD pass,
 // exact CHOLMOD steps and rotated-factor PCG with Gauss-Seidel sweeps (the scene's solver).
 TEST(ElementPassSimdTest, BodyStepsMatchTheScalarPass) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
 
@@ -766,6 +767,64 @@ TEST(FemBodyTest, LocalSolvesWhereTetsTurnApartCutIterationsAndOnEveryNodeMakeOn
     EXPECT_GT(u[0].norm(), 1e-3);
     for (int k = 1; k < 3; ++k) EXPECT_LT((u[k] - u[0]).norm(), 1e-6 * u[0].norm()) << k;
   }
+}
+
+// The node rotations that turn the rest factor are recomputed once the tets may have turned
+// rotated_factor_rotation_refresh_rad since the last time (the element passes' largest turns,
+// summed). A free body at rest is turned rigidly by 1 rad, twice: a threshold below 1 rad
+// refreshes at each turn (as 0, every step, does), 1.5 rad only at the second (the turns add up),
+// 3 rad at neither. Stale node frames cost iterations, never accuracy: every run takes the same
+// steps to the tolerance.
+TEST(FemBodyTest, NodeRotationsAreRecomputedOnceTheTetsMayHaveTurnedTheRefreshAngle) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {6, 2, 2});
+  const double thresholds[4] = {0.0, 0.5, 1.5, 3.0};
+  int iterations[4][2];
+  Eigen::VectorXd u[4][2];
+  for (int k = 0; k < 4; ++k) {
+    FemSettings s;
+    s.body_name = "turned block";
+    s.material = {2300.0, 0.45, 1000.0};
+    s.element_model = ElementModel::kCorotational;
+    s.integrator = TimeIntegrator::kBackwardEuler;
+    s.solver = LinearSolverKind::kRotatedFactorPcg;
+    s.pcg_relative_tolerance = 1e-10;
+    s.pcg_max_iterations = 200;
+    s.rotated_factor_rotation_refresh_rad = thresholds[k];
+    auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, {}));
+    FemBody body(model);
+    Eigen::VectorXd stretch = Eigen::VectorXd::Zero(model->num_dofs());  // balanced: the block deforms
+    for (int n : NodesOnPlane(mesh, 0, 0.0)) stretch[3 * n] = -0.05;
+    for (int n : NodesOnPlane(mesh, 0, 0.08)) stretch[3 * n] = 0.05;
+    body.SetExternalForces(stretch);
+    ASSERT_TRUE(body.Step().accepted);  // the first solve computes the node rotations
+    Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
+    for (int j = 0; j < 2; ++j) {
+      turn = Eigen::AngleAxisd(1.0, Eigen::Vector3d(0.2, 1.0, 0.4).normalized()).toRotationMatrix() * turn;
+      Eigen::VectorXd turned(model->num_dofs());
+      for (int n = 0; n < model->num_nodes(); ++n) {
+        const Eigen::Vector3d x = mesh.vertices.row(n);
+        turned.segment<3>(3 * n) = turn * x - x;
+      }
+      body.SetState(turned, Eigen::VectorXd::Zero(model->num_dofs()));
+      const StepReport r = body.Step();
+      ASSERT_TRUE(r.accepted) << r.rejection_reason;
+      EXPECT_LE(r.relative_residual, 1e-10);
+      iterations[k][j] = r.solver_iterations;
+      u[k][j] = body.state().displacement_m - turned;
+    }
+  }
+  std::printf("iterations after the first / second 1 rad turn, refresh at 0 / 0.5 / 1.5 / 3 rad: %d %d / %d %d / %d %d "
+              "/ %d %d\n",
+              iterations[0][0], iterations[0][1], iterations[1][0], iterations[1][1], iterations[2][0], iterations[2][1],
+              iterations[3][0], iterations[3][1]);
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_EQ(iterations[1][j], iterations[0][j]) << j;
+    EXPECT_GT(iterations[3][j], iterations[0][j] + 2) << j;
+    EXPECT_GT(u[0][j].norm(), 1e-6);
+    for (int k = 1; k < 4; ++k) EXPECT_LT((u[k][j] - u[0][j]).norm(), 1e-8 * u[0][j].norm()) << k << " " << j;
+  }
+  EXPECT_GT(iterations[2][0], iterations[0][0] + 2);  // 1 rad < 1.5: the frames stay
+  EXPECT_EQ(iterations[2][1], iterations[0][1]);      // 2 rad >= 1.5: recomputed
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <limits>
 
 #include "physics/fem/elastic_forces.h"
 #include "physics/fem/fem_error.h"
@@ -93,6 +94,13 @@ TEST(FemModelTest, BadMaterialIsAnErrorNamingBodyAndField) {
   s.rotated_factor_local_share = 0.0;
   s.rotated_factor_adopt_steps = -1;
   EXPECT_NE(message(s).find("gallbladder: setting rotated_factor_adopt_steps = -1"), std::string::npos) << message(s);
+  s.rotated_factor_adopt_steps = 15;
+  s.rotated_factor_rotation_refresh_rad = -0.01;
+  EXPECT_NE(message(s).find("gallbladder: setting rotated_factor_rotation_refresh_rad = -0.01"), std::string::npos)
+      << message(s);
+  s.rotated_factor_rotation_refresh_rad = std::numeric_limits<double>::infinity();
+  EXPECT_NE(message(s).find("gallbladder: setting rotated_factor_rotation_refresh_rad = inf"), std::string::npos)
+      << message(s);
 }
 
 TEST(FemModelTest, InvertedAndDegenerateTetsAreErrorsNamingBodyAndTet) {
