@@ -214,8 +214,7 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
   const bool linear = s.element_model == ElementModel::kLinear;
   if (MatrixFree()) {  // forces and rotations only: the solver applies K_t element by element
     double turn = 0.0;
-    w.elastic_energy =
-        ComputeElasticForces(m, u, nullptr, &w.internal_force, &w.rotations, &w.turned_gradients, &turn);
+    w.elastic_energy = ComputeElasticForces(m, u, nullptr, &w.internal_force, &w.rotations, &w.turned_gradients, &turn);
     w.rotation_drift_rad += turn;
     w.system_assembled = true;
     return;

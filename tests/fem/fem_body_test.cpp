@@ -813,10 +813,11 @@ TEST(FemBodyTest, NodeRotationsAreRecomputedOnceTheTetsMayHaveTurnedTheRefreshAn
       u[k][j] = body.state().displacement_m - turned;
     }
   }
-  std::printf("iterations after the first / second 1 rad turn, refresh at 0 / 0.5 / 1.5 / 3 rad: %d %d / %d %d / %d %d "
-              "/ %d %d\n",
-              iterations[0][0], iterations[0][1], iterations[1][0], iterations[1][1], iterations[2][0], iterations[2][1],
-              iterations[3][0], iterations[3][1]);
+  std::printf(
+      "iterations after the first / second 1 rad turn, refresh at 0 / 0.5 / 1.5 / 3 rad: %d %d / %d %d / %d %d "
+      "/ %d %d\n",
+      iterations[0][0], iterations[0][1], iterations[1][0], iterations[1][1], iterations[2][0], iterations[2][1],
+      iterations[3][0], iterations[3][1]);
   for (int j = 0; j < 2; ++j) {
     EXPECT_EQ(iterations[1][j], iterations[0][j]) << j;
     EXPECT_GT(iterations[3][j], iterations[0][j] + 2) << j;
