@@ -176,11 +176,10 @@ void FemBody::SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   const double stiffness_scale = 1.0 + c.damping * s.rayleigh_stiffness_s;
   const Eigen::VectorXd free_x = x.cwiseProduct(m.free_dofs);
   TangentTimes(free_x, y);
-  y *= stiffness_scale;
   if (m.uses_consistent_mass())
-    y += mass_scale * (PatternMatrix(m.pattern, m.consistent_mass_values) * free_x);
-  else
-    y += mass_scale * m.lumped_mass_kg.cwiseProduct(free_x);
+    y = stiffness_scale * y + mass_scale * (PatternMatrix(m.pattern, m.consistent_mass_values) * free_x);
+  else  // one pass over the vectors
+    y = stiffness_scale * y + mass_scale * m.lumped_mass_kg.cwiseProduct(free_x);
   if (w.attachment.any)
     y += (w.attachment.stiffness_N_per_m + c.damping * w.attachment.damping_Ns_per_m).cwiseProduct(free_x);
   for (int i : m.fixed_dofs) y[i] = x[i];
