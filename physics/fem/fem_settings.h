@@ -105,11 +105,12 @@ struct FemSettings {
   /// their tets' quaternions, a pass over every node's tets) are recomputed once the tets may have
   /// turned this much since (the sum over element passes of the largest turn of any tet); they
   /// only shape the preconditioner, so stale ones cost iterations, never accuracy. 0: every step.
-  /// >= 0, radians. The falling SOFA beam's nodes turn up to 0.006 rad a step: 0.03 recomputes them
-  /// 23 times in 200 steps (1.010 -> 1.020 iterations, ~0.1 ms a step less); the pulled
-  /// gallbladder box's turn 0.01-0.3 rad a step, recomputed 97 times in 100 steps (same
+  /// >= 0, radians. The falling SOFA beam's nodes turn up to 0.006 rad a step: 0.02 recomputes them
+  /// 33 times in 200 steps (1.010 -> 1.025 iterations at residual 1e-6, 1.32 -> 1.38 at 1e-8; 0.1
+  /// ms a step less at both, where 0.03 gained more at 1e-6 and nothing at 1e-8); the pulled
+  /// gallbladder box's turn 0.01-0.3 rad a step, recomputed 99 times in 100 steps (same
   /// iterations). docs/performance/fem.md, round 8.
-  double rotated_factor_rotation_refresh_rad = 0.03;
+  double rotated_factor_rotation_refresh_rad = 0.02;
   ElementKernel element_kernel = ElementKernel::kAuto;
 
   /// Divergence guard: a step is rejected when its energy exceeds this factor times (energy
