@@ -28,6 +28,8 @@ inline vd Gather(const double* base, const int* idx) {
                                   _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
 }
 inline vd Sqrt(vd x) { return _mm256_sqrt_pd(x); }
+inline vd Reciprocal(vd x) { return 1.0 / x; }
+inline vd ReciprocalSqrt(vd x) { return 1.0 / _mm256_sqrt_pd(x); }
 inline bool Any(vm m) { return _mm256_movemask_pd(__m256d(m)) != 0; }
 
 #include "physics/fem/element_pass_kernel.inc"
