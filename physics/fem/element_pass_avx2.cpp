@@ -31,6 +31,25 @@ inline vd Sqrt(vd x) { return _mm256_sqrt_pd(x); }
 inline vd Reciprocal(vd x) { return 1.0 / x; }
 inline vd ReciprocalSqrt(vd x) { return 1.0 / _mm256_sqrt_pd(x); }
 inline bool Any(vm m) { return _mm256_movemask_pd(__m256d(m)) != 0; }
+// out[idx[l] + 0..2] += (x, y, z) of lane l for l < count, in lane order (as in the AVX-512 pass).
+inline void ScatterAdd3(vd x, vd y, vd z, const int* idx, int count, double* out) {
+  const __m256d even = _mm256_unpacklo_pd(x, y);  // x0 y0 x2 y2
+  const __m256d odd = _mm256_unpackhi_pd(x, y);   // x1 y1 x3 y3
+  alignas(32) double zs[4];
+  _mm256_store_pd(zs, z);
+  const __m128d xy[4] = {_mm256_castpd256_pd128(even), _mm256_castpd256_pd128(odd), _mm256_extractf128_pd(even, 1),
+                         _mm256_extractf128_pd(odd, 1)};
+  auto add = [&](int l) {
+    double* o = out + idx[l];
+    _mm_storeu_pd(o, _mm_add_pd(_mm_loadu_pd(o), xy[l]));
+    o[2] += zs[l];
+  };
+  if (count == 4) {
+    add(0), add(1), add(2), add(3);  // unrolled: xy stays in registers
+  } else {
+    for (int l = 0; l < count; ++l) add(l);
+  }
+}
 
 #include "physics/fem/element_pass_kernel.inc"
 

@@ -43,6 +43,36 @@ inline vd ReciprocalSqrt(vd x) {
   return r;
 }
 inline bool Any(vm m) { return _mm512_test_epi64_mask(__m512i(m), __m512i(m)) != 0; }
+// out[idx[l] + 0..2] += (x, y, z) of lane l for l < count, in lane order. (x_l, y_l) pairs come out
+// of two unpacks and six extracts in registers, z through one store: the lanes' stores and
+// reloads of a scatter from memory were most of a product's loads.
+inline void ScatterAdd3(vd x, vd y, vd z, const int* idx, int count, double* out) {
+  // Zero-masked forms, as in Gather: the plain ones leave GCC 12 warning about an undefined source.
+  const __m512d even = _mm512_maskz_unpacklo_pd(0xff, x, y);  // x0 y0 x2 y2 x4 y4 x6 y6
+  const __m512d odd = _mm512_maskz_unpackhi_pd(0xff, x, y);   // x1 y1 x3 y3 x5 y5 x7 y7
+  alignas(64) double zs[8];
+  _mm512_store_pd(zs, z);
+  // Lane l's (x, y) is 128-bit chunk l / 2 of even (l even) or odd; chunk 0 by its elements, as
+  // GCC 12 warns on the cast.
+  const __m128d xy[8] = {__m128d{even[0], even[1]},
+                         __m128d{odd[0], odd[1]},
+                         _mm512_maskz_extractf64x2_pd(3, even, 1),
+                         _mm512_maskz_extractf64x2_pd(3, odd, 1),
+                         _mm512_maskz_extractf64x2_pd(3, even, 2),
+                         _mm512_maskz_extractf64x2_pd(3, odd, 2),
+                         _mm512_maskz_extractf64x2_pd(3, even, 3),
+                         _mm512_maskz_extractf64x2_pd(3, odd, 3)};
+  auto add = [&](int l) {
+    double* o = out + idx[l];
+    _mm_storeu_pd(o, _mm_add_pd(_mm_loadu_pd(o), xy[l]));
+    o[2] += zs[l];
+  };
+  if (count == 8) {
+    add(0), add(1), add(2), add(3), add(4), add(5), add(6), add(7);  // unrolled: xy stays in registers
+  } else {
+    for (int l = 0; l < count; ++l) add(l);
+  }
+}
 
 #include "physics/fem/element_pass_kernel.inc"
 
