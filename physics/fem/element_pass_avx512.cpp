@@ -43,7 +43,8 @@ inline vd ReciprocalSqrt(vd x) {
   return r;
 }
 inline bool Any(vm m) { return _mm512_test_epi64_mask(__m512i(m), __m512i(m)) != 0; }
-// out[idx[l] + 0..2] += (x, y, z) of lane l for l < count, in lane order. (x_l, y_l) pairs come out
+// out[idx[l] + 0..2] += (x, y, z) of lane l for l < count, in lane order (a run of lanes with the
+// same index summed first). (x_l, y_l) pairs come out
 // of two unpacks and six extracts in registers, z through one store: the lanes' stores and
 // reloads of a scatter from memory were most of a product's loads.
 inline void ScatterAdd3(vd x, vd y, vd z, const int* idx, int count, double* out) {
@@ -62,16 +63,32 @@ inline void ScatterAdd3(vd x, vd y, vd z, const int* idx, int count, double* out
                          _mm512_maskz_extractf64x2_pd(3, odd, 2),
                          _mm512_maskz_extractf64x2_pd(3, even, 3),
                          _mm512_maskz_extractf64x2_pd(3, odd, 3)};
-  auto add = [&](int l) {
+  auto add = [&](int l, __m128d v_xy, double v_z) {
     double* o = out + idx[l];
-    _mm_storeu_pd(o, _mm_add_pd(_mm_loadu_pd(o), xy[l]));
-    o[2] += zs[l];
+    _mm_storeu_pd(o, _mm_add_pd(_mm_loadu_pd(o), v_xy));
+    o[2] += v_z;
   };
-  if (count == 8) {
-    add(0), add(1), add(2), add(3), add(4), add(5), add(6), add(7);  // unrolled: xy stays in registers
-  } else {
-    for (int l = 0; l < count; ++l) add(l);
+  if (count < 8) {
+    for (int l = 0; l < count; ++l) add(l, xy[l], zs[l]);
+    return;
   }
+  // A run of lanes with one index (the tets of a hexahedron share its corner nodes) is summed in
+  // registers and added once: successive read-modify-writes of one node wait for each store to be
+  // forwarded. Unrolled, so xy stays in registers.
+  __m128d run_xy = xy[0];
+  double run_z = zs[0];
+#pragma GCC unroll 8
+  for (int l = 1; l < 8; ++l) {
+    if (idx[l] == idx[l - 1]) {
+      run_xy = _mm_add_pd(run_xy, xy[l]);
+      run_z += zs[l];
+    } else {
+      add(l - 1, run_xy, run_z);
+      run_xy = xy[l];
+      run_z = zs[l];
+    }
+  }
+  add(7, run_xy, run_z);
 }
 
 #include "physics/fem/element_pass_kernel.inc"
