@@ -31,6 +31,26 @@ inline vd Sqrt(vd x) { return _mm256_sqrt_pd(x); }
 inline vd Reciprocal(vd x) { return 1.0 / x; }
 inline vd ReciprocalSqrt(vd x) { return 1.0 / _mm256_sqrt_pd(x); }
 inline bool Any(vm m) { return _mm256_movemask_pd(__m256d(m)) != 0; }
+// The quaternions (x y z w) of 4 consecutive tets as 4 vectors of their components and back (a
+// 4 x 4 transpose either way).
+inline void Transpose4x4(const __m256d in[4], vd out[4]) {
+  const __m256d t0 = _mm256_unpacklo_pd(in[0], in[1]), t1 = _mm256_unpackhi_pd(in[0], in[1]);
+  const __m256d t2 = _mm256_unpacklo_pd(in[2], in[3]), t3 = _mm256_unpackhi_pd(in[2], in[3]);
+  out[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+  out[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+  out[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+  out[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+}
+inline void LoadQuaternions(const double* p, vd q[4]) {
+  const __m256d rows[4] = {_mm256_loadu_pd(p), _mm256_loadu_pd(p + 4), _mm256_loadu_pd(p + 8), _mm256_loadu_pd(p + 12)};
+  Transpose4x4(rows, q);
+}
+inline void StoreQuaternions(double* p, const vd q[4]) {
+  const __m256d columns[4] = {q[0], q[1], q[2], q[3]};
+  vd rows[4];
+  Transpose4x4(columns, rows);
+  for (int k = 0; k < 4; ++k) _mm256_storeu_pd(p + 4 * k, rows[k]);
+}
 // out[idx[l] + 0..2] += (x, y, z) of lane l for l < count, in lane order (as in the AVX-512 pass).
 inline void ScatterAdd3(vd x, vd y, vd z, const int* idx, int count, double* out) {
   const __m256d even = _mm256_unpacklo_pd(x, y);  // x0 y0 x2 y2

@@ -43,6 +43,35 @@ inline vd ReciprocalSqrt(vd x) {
   return r;
 }
 inline bool Any(vm m) { return _mm512_test_epi64_mask(__m512i(m), __m512i(m)) != 0; }
+// The quaternions (x y z w) of 8 consecutive tets, stored one after another, as 4 vectors of
+// their components and back: 4 contiguous loads or stores and 8 shuffles instead of 4 gathers
+// or 32 scalar stores.
+inline void LoadQuaternions(const double* p, vd q[4]) {
+  const __m512i first = _mm512_setr_epi64(0, 4, 1, 5, 8, 12, 9, 13),
+                second = _mm512_setr_epi64(2, 6, 3, 7, 10, 14, 11, 15);
+  const __m512d a = _mm512_loadu_pd(p), b = _mm512_loadu_pd(p + 8), c = _mm512_loadu_pd(p + 16),
+                d = _mm512_loadu_pd(p + 24);
+  const __m512d ab_low = _mm512_maskz_unpacklo_pd(0xff, a, b);   // x0 x2 z0 z2 x1 x3 z1 z3
+  const __m512d ab_high = _mm512_maskz_unpackhi_pd(0xff, a, b);  // y0 y2 w0 w2 y1 y3 w1 w3
+  const __m512d cd_low = _mm512_maskz_unpacklo_pd(0xff, c, d);
+  const __m512d cd_high = _mm512_maskz_unpackhi_pd(0xff, c, d);
+  q[0] = _mm512_maskz_permutex2var_pd(0xff, ab_low, first, cd_low);
+  q[1] = _mm512_maskz_permutex2var_pd(0xff, ab_high, first, cd_high);
+  q[2] = _mm512_maskz_permutex2var_pd(0xff, ab_low, second, cd_low);
+  q[3] = _mm512_maskz_permutex2var_pd(0xff, ab_high, second, cd_high);
+}
+inline void StoreQuaternions(double* p, const vd q[4]) {
+  const __m512i first = _mm512_setr_epi64(0, 2, 8, 10, 1, 3, 9, 11),
+                second = _mm512_setr_epi64(4, 6, 12, 14, 5, 7, 13, 15);
+  const __m512d ab_low = _mm512_maskz_permutex2var_pd(0xff, q[0], first, q[2]);  // x0 x2 z0 z2 x1 x3 z1 z3
+  const __m512d ab_high = _mm512_maskz_permutex2var_pd(0xff, q[1], first, q[3]);
+  const __m512d cd_low = _mm512_maskz_permutex2var_pd(0xff, q[0], second, q[2]);
+  const __m512d cd_high = _mm512_maskz_permutex2var_pd(0xff, q[1], second, q[3]);
+  _mm512_storeu_pd(p, _mm512_maskz_unpacklo_pd(0xff, ab_low, ab_high));
+  _mm512_storeu_pd(p + 8, _mm512_maskz_unpackhi_pd(0xff, ab_low, ab_high));
+  _mm512_storeu_pd(p + 16, _mm512_maskz_unpacklo_pd(0xff, cd_low, cd_high));
+  _mm512_storeu_pd(p + 24, _mm512_maskz_unpackhi_pd(0xff, cd_low, cd_high));
+}
 // out[idx[l] + 0..2] += (x, y, z) of lane l for l < count, in lane order (a run of lanes with the
 // same index summed first). (x_l, y_l) pairs come out
 // of two unpacks and six extracts in registers, z through one store: the lanes' stores and
