@@ -435,10 +435,18 @@ StepReport FemBody::Step() {
   }
   const Eigen::VectorXd& a = state_.acceleration_m_per_s2;
 
-  Eigen::VectorXd mass_drive, damping_drive, damping_term;
+  Eigen::VectorXd mass_drive, damping_drive;
   IntegratorDrives(s, v, a, mass_drive, damping_drive);
-  DampingTimes(damping_drive, damping_term);
-  Eigen::VectorXd rhs = f_ext - w.internal_force + m.MassTimes(mass_drive) + damping_term;
+  Eigen::VectorXd rhs;
+  if (m.uses_consistent_mass())
+    rhs = f_ext - w.internal_force + m.MassTimes(mass_drive);
+  else  // one pass, no temporary
+    rhs = f_ext - w.internal_force + m.lumped_mass_kg.cwiseProduct(mass_drive);
+  if (s.integrator != TimeIntegrator::kBackwardEuler) {  // backward Euler's damping drive is 0
+    Eigen::VectorXd damping_term;
+    DampingTimes(damping_drive, damping_term);
+    rhs += damping_term;
+  }
   if (w.attachment.any) {
     // f_ext holds the springs' force at v; the step adds -d (v+ - v) = -d (c_D du - drive - v).
     rhs += w.attachment.damping_Ns_per_m.cwiseProduct(damping_drive + v);
@@ -473,7 +481,7 @@ StepReport FemBody::Step() {
 
   // Energy after the step, elastic part to second order about u (one product with K_t).
   const double elastic_after = w.elastic_energy + w.internal_force.dot(du) + 0.5 * TangentQuadraticForm(du);
-  const double energy_after = 0.5 * v_next.dot(m.MassTimes(v_next)) + elastic_after;
+  const double energy_after = 0.5 * m.MassQuadraticForm(v_next) + elastic_after;
   const double work = std::abs(f_ext.dot(du));
   if (!std::isfinite(energy_after) || energy_after > s.max_energy_growth * (energy_before + work) + s.energy_floor_J) {
     std::ostringstream os;
@@ -501,7 +509,7 @@ Vertices FemBody::CurrentPositions() const {
 
 double FemBody::KineticEnergy() const {
   const Eigen::VectorXd& v = state_.velocity_m_per_s;
-  return 0.5 * v.dot(model_->MassTimes(v));
+  return 0.5 * model_->MassQuadraticForm(v);
 }
 
 double FemBody::ElasticEnergy() const {

@@ -18,6 +18,11 @@ Eigen::VectorXd FemModel::MassTimes(const Eigen::VectorXd& x) const {
   return lumped_mass_kg.cwiseProduct(x);
 }
 
+double FemModel::MassQuadraticForm(const Eigen::VectorXd& x) const {
+  if (uses_consistent_mass()) return x.dot(MassTimes(x));
+  return x.dot(lumped_mass_kg.cwiseProduct(x));
+}
+
 Eigen::VectorXd FemModel::GravityForces(const Eigen::Vector3d& g) const {
   return MassTimes(g.replicate(num_nodes(), 1));
 }

@@ -48,6 +48,8 @@ struct FemModel {
   bool uses_consistent_mass() const { return consistent_mass_values.size() > 0; }
   /// y = M x with the model's mass (lumped or consistent).
   Eigen::VectorXd MassTimes(const Eigen::VectorXd& x) const;
+  /// x . M x (twice a kinetic energy); no temporary vector with the lumped mass.
+  double MassQuadraticForm(const Eigen::VectorXd& x) const;
   /// Nodal gravity forces M g (N), g in m/s^2.
   Eigen::VectorXd GravityForces(const Eigen::Vector3d& g_m_per_s2) const;
 };
