@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <mutex>
+#include <stdexcept>
 #include <vector>
 
 #include "physics/fem/half_factor.h"
@@ -71,6 +72,7 @@ bool PositiveDefinite(const cholmod_factor& l) {
 // rows[pi[s]...], the first ones its own columns) starting at values[px[s]].
 struct SingleFactor {
   std::vector<int> super, pi, px, rows, perm;
+  std::vector<int> position;  // inverse of perm: entry j of b is y[position[j]]
   std::vector<float> values;
   std::vector<std::uint16_t> half_values;
   std::vector<std::size_t> half_px;   // supernode starts in the packed half_values
@@ -91,6 +93,8 @@ struct SingleFactor {
     px.assign(px_in, px_in + ns + 1);
     rows.assign(static_cast<const int*>(l.s), static_cast<const int*>(l.s) + pi[ns]);
     perm.assign(static_cast<const int*>(l.Perm), static_cast<const int*>(l.Perm) + n);
+    position.resize(n);
+    for (int k = 0; k < n; ++k) position[perm[k]] = k;
     const double* x = static_cast<const double*>(l.x);
     const size_t entries = static_cast<size_t>(px[ns]);
     double largest = 0.0;
@@ -147,11 +151,37 @@ struct SingleFactor {
   }
 
   void Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-    using Block = Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>;
-    const int n = static_cast<int>(perm.size()), ns = static_cast<int>(super.size()) - 1;
+    const int n = static_cast<int>(perm.size());
     for (int k = 0; k < n; ++k) y[k] = static_cast<float>(b[perm[k]]);
+    const double unscale = SolveInPlace();
+    x.resize(n);
+    for (int k = 0; k < n; ++k) x[perm[k]] = unscale * static_cast<double>(y[k]);
+  }
+
+  // x = R (L L^T)^-1 R^T b for R block diagonal (rotations[i] on rows 3i..3i+2): each node's 3
+  // entries turned on their way into the factor's order and out of it, with no turned vectors
+  // stored (the same values as turning, solving and turning back).
+  void SolveTurned(const std::vector<Eigen::Matrix3d>& rotations, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+    const int n = static_cast<int>(perm.size()), nodes = n / 3;
+    for (int i = 0; i < nodes; ++i) {
+      const Eigen::Vector3d turned = rotations[i].transpose() * b.segment<3>(3 * i);
+      for (int c = 0; c < 3; ++c) y[position[3 * i + c]] = static_cast<float>(turned[c]);
+    }
+    const double unscale = SolveInPlace();
+    x.resize(n);
+    for (int i = 0; i < nodes; ++i) {
+      Eigen::Vector3d solved;
+      for (int c = 0; c < 3; ++c) solved[c] = unscale * static_cast<double>(y[position[3 * i + c]]);
+      x.segment<3>(3 * i) = rotations[i] * solved;
+    }
+  }
+
+  // y <- (L L^T)^-1 y with the stored factor; returns the factor the result is short by (the half
+  // copy stores s L, so its solve comes out s^2 too small).
+  double SolveInPlace() const {
+    using Block = Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>;
+    const int ns = static_cast<int>(super.size()) - 1;
     if (half) {
-      // (s L)(s L)^T = s^2 L L^T, so the solve with the stored factor comes out s^2 too small.
       HalfFactorView view;
       view.super = super.data(), view.pi = pi.data(), view.px = half_px.data(), view.rows = rows.data();
       view.num_supernodes = ns;
@@ -159,10 +189,7 @@ struct SingleFactor {
       view.panel_inverses = panel_inverses.data();
       view.first_panel = first_panel.data();
       HalfFactorSolveF16c(view, y.data(), gathered.data());
-      x.resize(n);
-      const double unscale = half_scale * half_scale;
-      for (int k = 0; k < n; ++k) x[perm[k]] = unscale * static_cast<double>(y[k]);
-      return;
+      return half_scale * half_scale;
     }
     for (int s = 0; s < ns; ++s) {  // L z = P b
       const int k0 = super[s], nc = super[s + 1] - k0, nr = pi[s + 1] - pi[s];
@@ -187,8 +214,7 @@ struct SingleFactor {
       }
       l.topRows(nc).triangularView<Eigen::Lower>().transpose().solveInPlace(ys);
     }
-    x.resize(n);
-    for (int k = 0; k < n; ++k) x[perm[k]] = static_cast<double>(y[k]);
+    return 1.0;
   }
 };
 
@@ -259,6 +285,23 @@ void CholmodSolver::SolveSinglePrecision(const Eigen::VectorXd& b, Eigen::Vector
   } else {
     Solve(b, x);
   }
+}
+
+void CholmodSolver::SolveSinglePrecisionTurned(const std::vector<Eigen::Matrix3d>& node_rotations,
+                                               const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  if (3 * static_cast<Eigen::Index>(node_rotations.size()) != b.size())
+    throw std::invalid_argument("CholmodSolver::SolveSinglePrecisionTurned: one rotation a node (3 rows) needed");
+  if (impl_->has_single) {
+    const std::lock_guard lock(impl_->single_mutex);
+    impl_->single.SolveTurned(node_rotations, b, x);
+    return;
+  }
+  Eigen::VectorXd turned(b.size()), solved;
+  for (size_t i = 0; i < node_rotations.size(); ++i)
+    turned.segment<3>(3 * i) = node_rotations[i].transpose() * b.segment<3>(3 * i);
+  Solve(turned, solved);
+  x.resize(b.size());
+  for (size_t i = 0; i < node_rotations.size(); ++i) x.segment<3>(3 * i) = node_rotations[i] * solved.segment<3>(3 * i);
 }
 
 }  // namespace vesica::physics

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <future>
 #include <memory>
+#include <vector>
 
 #include "physics/fem/sparse_pattern.h"
 
@@ -37,6 +38,12 @@ class CholmodSolver {
   /// preconditioning. Falls back to Solve when no float
   /// copy was kept or CHOLMOD chose a simplicial factor.
   void SolveSinglePrecision(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
+  /// x ~= R A^-1 R^T b with R block diagonal, node_rotations[i] on rows 3i..3i+2 (A's factor
+  /// turned into other frames node by node: the rotated-factor preconditioner), with the float or
+  /// half copy like SolveSinglePrecision; the turns ride on its permutations. Throws
+  /// std::invalid_argument unless there is one rotation per 3 rows.
+  void SolveSinglePrecisionTurned(const std::vector<Eigen::Matrix3d>& node_rotations, const Eigen::VectorXd& b,
+                                  Eigen::VectorXd& x) const;
 
  private:
   struct Impl;

@@ -9,14 +9,15 @@ namespace vesica::physics {
 void RotatedFactorPreconditioner::ApplyTurnedFactor(const RotatedFactorParts& parts, const Eigen::VectorXd& r,
                                                     Eigen::VectorXd& z) {
   const std::vector<Eigen::Matrix3d>& rotations = *parts.node_rotations;
+  if (parts.single_precision) {
+    parts.rest_factor->SolveSinglePrecisionTurned(rotations, r, z);
+    return;
+  }
   const auto nodes = static_cast<Eigen::Index>(rotations.size());
   turned_residual_.resize(r.size());
   for (Eigen::Index n = 0; n < nodes; ++n)
     turned_residual_.segment<3>(3 * n) = rotations[n].transpose() * r.segment<3>(3 * n);
-  if (parts.single_precision)
-    parts.rest_factor->SolveSinglePrecision(turned_residual_, turned_solution_);
-  else
-    parts.rest_factor->Solve(turned_residual_, turned_solution_);
+  parts.rest_factor->Solve(turned_residual_, turned_solution_);
   z.resize(r.size());
   for (Eigen::Index n = 0; n < nodes; ++n) z.segment<3>(3 * n) = rotations[n] * turned_solution_.segment<3>(3 * n);
 }

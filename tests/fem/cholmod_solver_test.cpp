@@ -3,9 +3,11 @@
 #include <dlfcn.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -149,6 +151,47 @@ TEST(CholmodSolverTest, HalfPrecisionSolveIsASymmetricOperator) {
   const double asymmetry = std::abs(a.dot(pb) - b.dot(pa)) / std::sqrt(a.dot(pa) * b.dot(pb));
   std::printf("half-precision preconditioner: |a.P b - b.P a| / sqrt(a.P a b.P b) = %.2e\n", asymmetry);
   EXPECT_LT(asymmetry, 1e-7);
+}
+
+// The turned solve R A^-1 R^T b is the turn, the low-precision solve and the turn back, bit for
+// bit, with the half copy, the float copy and (no copy kept) the double solve; and it inverts
+// R A R^T: with the double solve to 1e-12, since R is orthogonal.
+TEST(CholmodSolverTest, TurnedSolveIsTurnSolveTurnBack) {
+  const FemModel m = Box({6, 3, 2});
+  const Eigen::VectorXd s = SystemValues(m);
+  std::vector<Eigen::Matrix3d> rotations(m.num_nodes());
+  for (int i = 0; i < m.num_nodes(); ++i)
+    rotations[i] = Eigen::AngleAxisd(0.3 * i, Eigen::Vector3d(1.0, 0.5 * i, -2.0).normalized()).toRotationMatrix();
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(m.num_dofs(), -1.0, 2.0).array().sin();
+  auto turn = [&](const Eigen::VectorXd& v, bool transposed) {  // the preconditioner's turns before
+    Eigen::VectorXd out(v.size());
+    for (int i = 0; i < m.num_nodes(); ++i) {
+      if (transposed)
+        out.segment<3>(3 * i) = rotations[i].transpose() * v.segment<3>(3 * i);
+      else
+        out.segment<3>(3 * i) = rotations[i] * v.segment<3>(3 * i);
+    }
+    return out;
+  };
+  for (int copy = 0; copy < 3; ++copy) {  // half, float, none
+    CholmodSolver cholesky;
+    ASSERT_TRUE(cholesky.Factorize(m.pattern, s, copy < 2, copy == 0));
+    Eigen::VectorXd turned, solved;
+    cholesky.SolveSinglePrecisionTurned(rotations, b, turned);
+    cholesky.SolveSinglePrecision(turn(b, true), solved);
+    EXPECT_EQ(turned, turn(solved, false)) << "copy " << copy;
+    if (copy == 2) {
+      const Eigen::MatrixXd a = PatternMatrix(m.pattern, s);
+      Eigen::MatrixXd r = Eigen::MatrixXd::Zero(m.num_dofs(), m.num_dofs());
+      for (int i = 0; i < m.num_nodes(); ++i) r.block<3, 3>(3 * i, 3 * i) = rotations[i];
+      EXPECT_LT((r * a * r.transpose() * turned - b).norm(), 1e-12 * b.norm());
+    }
+  }
+  CholmodSolver cholesky;
+  ASSERT_TRUE(cholesky.Factorize(m.pattern, s, true, true));
+  Eigen::VectorXd x;
+  rotations.pop_back();
+  EXPECT_THROW(cholesky.SolveSinglePrecisionTurned(rotations, b, x), std::invalid_argument);
 }
 
 TEST(CholmodSolverTest, SinglePrecisionSolveWithoutAFloatCopyIsTheDoubleSolve) {
