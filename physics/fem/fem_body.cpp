@@ -494,8 +494,10 @@ StepReport FemBody::Step() {
   state_.acceleration_m_per_s2 = std::move(a_next);
   state_.time_s += s.time_step_s;
   ++state_.steps;
-  if (s.solver == LinearSolverKind::kRotatedFactorPcg) w.extrapolation.Push(du);
-  w.last_increment = du;
+  if (s.solver == LinearSolverKind::kRotatedFactorPcg)
+    w.extrapolation.Push(du);  // its warm start; last_increment is the other solvers'
+  else
+    w.last_increment = du;
   report.accepted = true;
   report.energy_J = energy_after;
   return report;

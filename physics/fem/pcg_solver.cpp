@@ -232,8 +232,8 @@ PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen:
     return result;
   }
   preconditioner(r, z);
-  p = z;
   double rz = r.dot(z);
+  p.swap(z);  // p = z: z is written again before it is read
   for (int it = 1; it <= max_iterations; ++it) {
     apply(p, q);
     const double pq = p.dot(q);
