@@ -174,7 +174,13 @@ void FemBody::SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   const SystemCoefficients c = IntegratorCoefficients(s);
   const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;
   const double stiffness_scale = 1.0 + c.damping * s.rayleigh_stiffness_s;
-  const Eigen::VectorXd free_x = x.cwiseProduct(m.free_dofs);
+  // PCG's directions and warm starts are 0 on the fixed dofs already: then x is its own free part,
+  // and no masked copy is made.
+  bool fixed_zero = true;
+  for (int i : m.fixed_dofs) fixed_zero = fixed_zero && x[i] == 0.0;
+  Eigen::VectorXd masked;
+  if (!fixed_zero) masked = x.cwiseProduct(m.free_dofs);
+  const Eigen::VectorXd& free_x = fixed_zero ? x : masked;
   TangentTimes(free_x, y);
   if (m.uses_consistent_mass())
     y = stiffness_scale * y + mass_scale * (PatternMatrix(m.pattern, m.consistent_mass_values) * free_x);
