@@ -31,6 +31,12 @@ inline vd Sqrt(vd x) { return _mm256_sqrt_pd(x); }
 inline vd Reciprocal(vd x) { return 1.0 / x; }
 inline vd ReciprocalSqrt(vd x) { return 1.0 / _mm256_sqrt_pd(x); }
 inline bool Any(vm m) { return _mm256_movemask_pd(__m256d(m)) != 0; }
+// base[idx[l] + 0..2] of the 4 lanes as x, y, z vectors.
+inline void Gather3(const double* base, const int* idx, vd& x, vd& y, vd& z) {
+  x = Gather(base, idx);
+  y = Gather(base + 1, idx);
+  z = Gather(base + 2, idx);
+}
 // The quaternions (x y z w) of 4 consecutive tets as 4 vectors of their components and back (a
 // 4 x 4 transpose either way).
 inline void Transpose4x4(const __m256d in[4], vd out[4]) {

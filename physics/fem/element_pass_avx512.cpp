@@ -43,6 +43,22 @@ inline vd ReciprocalSqrt(vd x) {
   return r;
 }
 inline bool Any(vm m) { return _mm512_test_epi64_mask(__m512i(m), __m512i(m)) != 0; }
+// base[idx[l] + 0..2] of the 8 lanes as x, y, z vectors: each lane's (x, y) by a 128-bit load,
+// put together by inserts and two unpacks, and z by one gather (three gathers before).
+inline void Gather3(const double* base, const int* idx, vd& x, vd& y, vd& z) {
+  const __m512d zero = _mm512_setzero_pd();
+  __m512d even = _mm512_insertf64x2(zero, _mm_loadu_pd(base + idx[0]), 0);  // x0 y0 x2 y2 x4 y4 x6 y6
+  __m512d odd = _mm512_insertf64x2(zero, _mm_loadu_pd(base + idx[1]), 0);   // x1 y1 x3 y3 x5 y5 x7 y7
+  even = _mm512_insertf64x2(even, _mm_loadu_pd(base + idx[2]), 1);
+  odd = _mm512_insertf64x2(odd, _mm_loadu_pd(base + idx[3]), 1);
+  even = _mm512_insertf64x2(even, _mm_loadu_pd(base + idx[4]), 2);
+  odd = _mm512_insertf64x2(odd, _mm_loadu_pd(base + idx[5]), 2);
+  even = _mm512_insertf64x2(even, _mm_loadu_pd(base + idx[6]), 3);
+  odd = _mm512_insertf64x2(odd, _mm_loadu_pd(base + idx[7]), 3);
+  x = _mm512_maskz_unpacklo_pd(0xff, even, odd);
+  y = _mm512_maskz_unpackhi_pd(0xff, even, odd);
+  z = Gather(base + 2, idx);
+}
 // The quaternions (x y z w) of 8 consecutive tets, stored one after another, as 4 vectors of
 // their components and back: 4 contiguous loads or stores and 8 shuffles instead of 4 gathers
 // or 32 scalar stores.
