@@ -58,7 +58,8 @@ inline vf KeepTail(vf v, Tail mask) { return _mm256_and_ps(v, _mm256_castsi256_p
 // stream. The solve reads the factor in ascending order (forward) and descending supernodes
 // (backward), in both cases nearly in order within a supernode, so a cursor ahead of the current
 // supernode covers it. 64 KB (prefetched into L1, kept in L2 when L1 drops it) measured best
-// among 4 KB ... 256 KB, and better than prefetching to L2 only.
+// among 4 KB ... 256 KB, and better than prefetching to L2 only; the non-temporal hint made the
+// solve 2.5x slower (its lines leave L3 too, and the next solve reads them from memory).
 class FactorPrefetch {
  public:
   static constexpr std::ptrdiff_t kDistanceBytes = 64 * 1024;
