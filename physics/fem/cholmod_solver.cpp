@@ -66,19 +66,51 @@ bool PositiveDefinite(const cholmod_factor& l) {
   return true;
 }
 
-// Supernodal L L^T = P A P^T with L rounded to float (or to half, times a power of two that keeps
-// the largest entry near 2^14: binary16 tops out at 65504). Supernode s holds columns
-// [super[s], super[s+1]) as a dense column-major block of pi[s+1] - pi[s] rows (row indices
-// rows[pi[s]...], the first ones its own columns) starting at values[px[s]].
+// LAPACK's triangular inverse and BLAS's triangular product (the Fortran interface, which the
+// BLAS CHOLMOD uses provides; the trailing lengths are the hidden string lengths).
+extern "C" {
+void dtrtri_(const char* uplo, const char* diag, const int* n, double* a, const int* lda, int* info, std::size_t,
+             std::size_t);
+void dtrmm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
+            const double* alpha, const double* a, const int* lda, double* b, const int* ldb, std::size_t, std::size_t,
+            std::size_t, std::size_t);
+}
+
+// CHOLMOD's supernodal factor with each supernode's [L_D; L_B] replaced by [L_D^-1; L_B L_D^-1]
+// (half_factor.h), same layout. False when some entry is not finite or a triangle is singular.
+bool PartitionedInverse(const cholmod_factor& l, std::vector<double>& out) {
+  const int ns = static_cast<int>(l.nsuper);
+  const int* super = static_cast<const int*>(l.super);
+  const int* pi = static_cast<const int*>(l.pi);
+  const int* px = static_cast<const int*>(l.px);
+  const double* x = static_cast<const double*>(l.x);
+  out.assign(x, x + px[ns]);
+  for (int s = 0; s < ns; ++s) {
+    const int nr = pi[s + 1] - pi[s], nc = super[s + 1] - super[s], below = nr - nc;
+    double* block = out.data() + px[s];
+    int info = 0;
+    dtrtri_("L", "N", &nc, block, &nr, &info, 1, 1);
+    if (info != 0) return false;
+    const double one = 1.0;
+    if (below > 0) dtrmm_("R", "L", "N", "N", &below, &nc, &one, block, &nr, block + nc, &nr, 1, 1, 1, 1);
+  }
+  for (double v : out)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+// Supernodal L L^T = P A P^T with L rounded to float, or as its partitioned inverse in half
+// (half_factor.h). Supernode s holds columns [super[s], super[s+1]) as a dense column-major block
+// of pi[s+1] - pi[s] rows (row indices rows[pi[s]...], the first ones its own columns) starting at
+// values[px[s]].
 struct SingleFactor {
   std::vector<int> super, pi, px, rows, perm;
   std::vector<int> position;  // inverse of perm: entry j of b is y[position[j]]
   std::vector<float> values;
   std::vector<std::uint16_t> half_values;
-  std::vector<std::size_t> half_px;   // supernode starts in the packed half_values
-  std::vector<float> panel_inverses;  // HalfFactorView::panel_inverses
-  std::vector<int> first_panel;
-  double half_scale = 1.0;  // half_values = half_scale L
+  std::vector<std::size_t> half_px;  // supernode starts in the packed half_values
+  double triangle_scale = 1.0;       // half_factor.h
+  double below_scale = 1.0;
   bool half = false;
   mutable Eigen::VectorXf y, gathered;
 
@@ -95,67 +127,57 @@ struct SingleFactor {
     perm.assign(static_cast<const int*>(l.Perm), static_cast<const int*>(l.Perm) + n);
     position.resize(n);
     for (int k = 0; k < n; ++k) position[perm[k]] = k;
-    const double* x = static_cast<const double*>(l.x);
-    const size_t entries = static_cast<size_t>(px[ns]);
-    double largest = 0.0;
-    for (size_t k = 0; k < entries; ++k) largest = std::max(largest, std::abs(x[k]));
-    half = half_storage && HalfFactorSupported() && largest > 0.0 && std::isfinite(largest);
+    std::vector<double> inverse;
+    half = half_storage && HalfFactorSupported() && PartitionedInverse(l, inverse);
     if (half) {
-      // Packed (half_factor.h): each column from its diagonal entry down.
-      half_scale = std::exp2(std::floor(std::log2(16384.0 / largest)));
+      double largest_t = 0.0, largest_w = 0.0;
+      for (int s = 0; s < ns; ++s) {
+        const int nr = pi[s + 1] - pi[s], nc = super[s + 1] - super[s];
+        const double* block = inverse.data() + px[s];
+        for (int j = 0; j < nc; ++j) {
+          for (int i = j; i < nc; ++i) largest_t = std::max(largest_t, std::abs(block[j * nr + i]));
+          for (int i = nc; i < nr; ++i) largest_w = std::max(largest_w, std::abs(block[j * nr + i]));
+        }
+      }
+      // Powers of two that bring each part's largest entry near 2^14.
+      triangle_scale = std::exp2(std::floor(std::log2(16384.0 / largest_t)));
+      below_scale = largest_w > 0.0 ? std::exp2(std::floor(std::log2(16384.0 / largest_w))) : 1.0;
       half_px.resize(ns + 1);
       half_px[0] = 0;
       for (int s = 0; s < ns; ++s)
         half_px[s + 1] = half_px[s] + PackedSupernodeEntries(pi[s + 1] - pi[s], super[s + 1] - super[s]);
       half_values.assign(half_px[ns] + kHalfFactorPadding, 0);  // zeros past the end: the kernels read whole vectors
-      first_panel.resize(ns + 1);
-      first_panel[0] = 0;
-      for (int s = 0; s < ns; ++s) first_panel[s + 1] = first_panel[s] + (super[s + 1] - super[s] + 3) / 4;
-      panel_inverses.resize(static_cast<size_t>(kPanelInverseFloats) * first_panel[ns]);
       for (int s = 0; s < ns; ++s) {
         const int nr = pi[s + 1] - pi[s], nc = super[s + 1] - super[s];
-        const double* block = x + px[s];  // CHOLMOD's layout: column j at block + j nr
+        const double* block = inverse.data() + px[s];
         std::uint16_t* out = half_values.data() + half_px[s];
-        for (int j = 0; j < nc; ++j) {
-          ConvertToHalfF16c(block + static_cast<std::ptrdiff_t>(j) * nr + j, nr - j, half_scale, out);
+        for (int j = 0; j < nc; ++j) {  // packed: column j from its row j down
+          ConvertToHalfF16c(block + static_cast<std::ptrdiff_t>(j) * nr + j, nc - j, triangle_scale, out);
+          ConvertToHalfF16c(block + static_cast<std::ptrdiff_t>(j) * nr + nc, nr - nc, below_scale, out + nc - j);
           out += nr - j;
-        }
-        for (int k = 0; 4 * k < nc; ++k) {  // the last panel may be narrower (nc % 4 columns)
-          const int width = std::min(4, nc - 4 * k);
-          const Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>> triangle(
-              block + static_cast<std::ptrdiff_t>(4 * k) * (nr + 1), width, width, Eigen::OuterStride<>(nr));
-          // (s T)^-1 = T^-1 / s: Eigen 3.4's triangular solve of the expression (s T) ignored s.
-          Eigen::Matrix4d inverse = Eigen::Matrix4d::Zero();
-          inverse.topLeftCorner(width, width) =
-              triangle.triangularView<Eigen::Lower>().solve(Eigen::MatrixXd::Identity(width, width)) / half_scale;
-          float* panel = panel_inverses.data() + static_cast<size_t>(kPanelInverseFloats) * (first_panel[s] + k);
-          Eigen::Map<Eigen::Matrix4f> forward(panel), backward(panel + 16);
-          forward = inverse.cast<float>();
-          backward = inverse.transpose().cast<float>();
         }
       }
       values.clear();
     } else {
-      values.resize(entries);
-      for (size_t k = 0; k < entries; ++k) values[k] = static_cast<float>(x[k]);
+      const double* x = static_cast<const double*>(l.x);
+      values.resize(px[ns]);
+      for (size_t k = 0; k < values.size(); ++k) values[k] = static_cast<float>(x[k]);
       half_values.clear();
       half_px.clear();
-      panel_inverses.clear();
-      first_panel.clear();
     }
     y.resize(n);
     int widest = 0;
-    for (int s = 0; s < ns; ++s) widest = std::max(widest, (pi[s + 1] - pi[s]) - (super[s + 1] - super[s]));
-    gathered.resize(widest);
+    for (int s = 0; s < ns; ++s) widest = std::max(widest, pi[s + 1] - pi[s]);
+    gathered.setZero(widest + kHalfFactorPadding);  // the kernels read (and add zeros to) a vector past nr
     return true;
   }
 
   void Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
     const int n = static_cast<int>(perm.size());
     for (int k = 0; k < n; ++k) y[k] = static_cast<float>(b[perm[k]]);
-    const double unscale = SolveInPlace();
+    SolveInPlace();
     x.resize(n);
-    for (int k = 0; k < n; ++k) x[perm[k]] = unscale * static_cast<double>(y[k]);
+    for (int k = 0; k < n; ++k) x[perm[k]] = static_cast<double>(y[k]);
   }
 
   // x = R (L L^T)^-1 R^T b for R block diagonal (rotations[i] on rows 3i..3i+2): each node's 3
@@ -167,18 +189,17 @@ struct SingleFactor {
       const Eigen::Vector3d turned = rotations[i].transpose() * b.segment<3>(3 * i);
       for (int c = 0; c < 3; ++c) y[position[3 * i + c]] = static_cast<float>(turned[c]);
     }
-    const double unscale = SolveInPlace();
+    SolveInPlace();
     x.resize(n);
     for (int i = 0; i < nodes; ++i) {
       Eigen::Vector3d solved;
-      for (int c = 0; c < 3; ++c) solved[c] = unscale * static_cast<double>(y[position[3 * i + c]]);
+      for (int c = 0; c < 3; ++c) solved[c] = static_cast<double>(y[position[3 * i + c]]);
       x.segment<3>(3 * i) = rotations[i] * solved;
     }
   }
 
-  // y <- (L L^T)^-1 y with the stored factor; returns the factor the result is short by (the half
-  // copy stores s L, so its solve comes out s^2 too small).
-  double SolveInPlace() const {
+  // y <- (L L^T)^-1 y with the stored factor.
+  void SolveInPlace() const {
     using Block = Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>;
     const int ns = static_cast<int>(super.size()) - 1;
     if (half) {
@@ -186,10 +207,10 @@ struct SingleFactor {
       view.super = super.data(), view.pi = pi.data(), view.px = half_px.data(), view.rows = rows.data();
       view.num_supernodes = ns;
       view.values = half_values.data();
-      view.panel_inverses = panel_inverses.data();
-      view.first_panel = first_panel.data();
+      view.triangle_unscale = static_cast<float>(1.0 / triangle_scale);
+      view.below_unscale = static_cast<float>(1.0 / below_scale);
       HalfFactorSolveF16c(view, y.data(), gathered.data());
-      return half_scale * half_scale;
+      return;
     }
     for (int s = 0; s < ns; ++s) {  // L z = P b
       const int k0 = super[s], nc = super[s + 1] - k0, nr = pi[s + 1] - pi[s];
@@ -214,7 +235,6 @@ struct SingleFactor {
       }
       l.topRows(nc).triangularView<Eigen::Lower>().transpose().solveInPlace(ys);
     }
-    return 1.0;
   }
 };
 

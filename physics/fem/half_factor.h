@@ -10,10 +10,15 @@
 namespace vesica::physics {
 
 /// Supernode s holds columns [super[s], super[s+1]) of pi[s+1] - pi[s] = nr rows (row indices
-/// rows[pi[s]...], the first ones its own columns), column-major from values[px[s]] like CHOLMOD's
-/// supernodal factor, but packed: its column j stores rows j..nr-1 only, from
-/// values[px[s] + j nr - j (j - 1) / 2]. CHOLMOD's layout also stores the zero upper triangle of each
-/// diagonal block (a fifth of the entries of a 3D grid's factor), and the solve streams the factor.
+/// rows[pi[s]...], the first nc ones its own columns). With L_D its nc x nc lower triangle and L_B
+/// the nr - nc rows below, it is stored as the partitioned inverse [T; W] = [L_D; L_B] L_D^-1
+/// (T = L_D^-1, W = L_B L_D^-1), T times triangle_scale and W times below_scale (powers of two that
+/// keep each part's largest entry near 2^14: binary16 tops out at 65504). Then the solves are
+/// products with no chain of dependent steps inside a supernode: forward z_D = T y_D and
+/// y_B -= W y_D; backward w_D = T^T z_D - W^T w_B. Column-major like CHOLMOD's supernodal factor
+/// but packed: column j stores rows j..nr-1 only (T is lower triangular), from
+/// values[px[s] + j nr - j (j - 1) / 2]. CHOLMOD's layout also stores the zero upper triangle of
+/// each diagonal block (a fifth of the entries of a 3D grid's factor), and the solve streams the factor.
 struct HalfFactorView {
   const int* super = nullptr;
   const int* pi = nullptr;
@@ -21,16 +26,9 @@ struct HalfFactorView {
   const int* rows = nullptr;
   int num_supernodes = 0;
   const std::uint16_t* values = nullptr;  ///< followed by kHalfFactorPadding readable entries
-  /// For the k-th 4-column panel of supernode s (k < ceil(nc / 4), panel first_panel[s] + k; the
-  /// last one has nc % 4 columns when that is not 0): the inverse M of its lower triangle in float,
-  /// by columns, zero-padded to 4 x 4, then M^T by columns (kPanelInverseFloats floats). The
-  /// triangle is solved as one small product, not a chain of dependent divisions; the same M in
-  /// both solves keeps the preconditioner symmetric.
-  const float* panel_inverses = nullptr;
-  const int* first_panel = nullptr;
+  float triangle_unscale = 1.0f;          ///< 1 / triangle_scale
+  float below_unscale = 1.0f;             ///< 1 / below_scale
 };
-
-constexpr int kPanelInverseFloats = 32;
 
 /// Entries past the last the kernels may read (one vector of halves).
 constexpr int kHalfFactorPadding = 8;
@@ -44,8 +42,8 @@ inline std::size_t PackedSupernodeEntries(int rows, int columns) {
 bool HalfFactorSupported();
 /// out[k] = half(scale * x[k]); call only when HalfFactorSupported().
 void ConvertToHalfF16c(const double* x, std::size_t n, double scale, std::uint16_t* out);
-/// y <- (L L^T)^-1 y in the factor's permuted order, L the stored (scaled) factor; `gathered`
-/// holds at least the widest supernode's below-diagonal row count. Only when HalfFactorSupported().
+/// y <- (L L^T)^-1 y in the factor's permuted order; `gathered` holds the widest supernode's row
+/// count plus one vector (kHalfFactorPadding) of floats, all finite. Only when HalfFactorSupported().
 void HalfFactorSolveF16c(const HalfFactorView& factor, float* y, float* gathered);
 
 }  // namespace vesica::physics

@@ -100,76 +100,77 @@ inline const std::uint16_t* Column(const std::uint16_t* l, int nr, int j) {
   return l + static_cast<std::ptrdiff_t>(j) * nr - static_cast<std::ptrdiff_t>(j) * (j + 1) / 2;
 }
 
-// M v for a 4 x 4 matrix stored by columns (16 floats): two products and two sums deep.
-inline __m128 PanelTimes(const float* m, __m128 v) {
-  const __m128 v0 = _mm_shuffle_ps(v, v, 0x00), v1 = _mm_shuffle_ps(v, v, 0x55);
-  const __m128 v2 = _mm_shuffle_ps(v, v, 0xaa), v3 = _mm_shuffle_ps(v, v, 0xff);
-  const __m128 low = _mm_fmadd_ps(_mm_loadu_ps(m + 4), v1, _mm_mul_ps(_mm_loadu_ps(m), v0));
-  const __m128 high = _mm_fmadd_ps(_mm_loadu_ps(m + 12), v3, _mm_mul_ps(_mm_loadu_ps(m + 8), v2));
-  return _mm_add_ps(low, high);
+// Lane k of v moved to lane k + shift; lanes outside [shift, end) zeroed.
+inline vf ShiftIntoRange(vf v, int shift, int end) {
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i keep = _mm256_and_si256(_mm256_cmpgt_epi32(lane, _mm256_set1_epi32(shift - 1)),
+                                        _mm256_cmpgt_epi32(_mm256_set1_epi32(end), lane));
+  const vf moved = _mm256_permutevar8x32_ps(v, _mm256_sub_epi32(lane, _mm256_set1_epi32(shift)));
+  return _mm256_and_ps(moved, _mm256_castsi256_ps(keep));
 }
 
-// v <- M v (or M^T v) for the r x r leading block (r < 4) of a lower-triangular 4 x 4 M stored by
-// columns: the triangle of a supernode's last nc % 4 columns.
-inline void RemainderTimes(const float* m, int r, float* v, bool transposed) {
-  float out[3];
-  for (int i = 0; i < r; ++i) {
-    float sum = 0.0f;
-    if (transposed)
-      for (int k = i; k < r; ++k) sum += m[4 * i + k] * v[k];  // (M^T)(i, k) = M(k, i)
-    else
-      for (int k = 0; k <= i; ++k) sum += m[4 * k + i] * v[k];
-    out[i] = sum;
-  }
-  for (int i = 0; i < r; ++i) v[i] = out[i];
-}
-
-// y[0..n) += sum_c a[c] l_c[0..n) for C columns l_c = Column(l, nr, j + c) + row: y is read and
-// written once for C columns of L.
+// y[j..nr) += sum_c a[c] L_{j+c}, the C columns from j of a packed supernode (C <= 8): their own
+// triangle (rows j..j+C-1) as one vector, the column starts moved into place in registers, then
+// the rows below it, y read and written once for the C columns. y has a vector's room past nr
+// (the triangle's vector may reach past it, adding zeros).
 template <int C>
-inline void AxpyColumns(const float* a, const std::uint16_t* l, int nr, int j, int row, float* y, int n,
-                        FactorPrefetch& prefetch) {
+inline void AxpyGroup(const float* a, const std::uint16_t* l, int nr, int j, float* y, FactorPrefetch& prefetch) {
   vf coefficient[C];
   const std::uint16_t* column[C];
-  for (int c = 0; c < C; ++c) coefficient[c] = Splat(a[c]), column[c] = Column(l, nr, j + c) + row;
+  vf top = Zero();
+  for (int c = 0; c < C; ++c) {
+    coefficient[c] = Splat(a[c]);
+    column[c] = Column(l, nr, j + c);
+    top = Fma(coefficient[c], ShiftIntoRange(LoadHalf(column[c] + j + c), c, C), top);
+  }
+  Store(y + j, Load(y + j) + top);
+  const int row = j + C, n = nr - row;
+  for (int c = 0; c < C; ++c) column[c] += row;
+  float* yb = y + row;
   int i = 0;
   for (; i + W <= n; i += W) {
-    vf v = Load(y + i);
+    vf v = Load(yb + i);
     for (int c = 0; c < C; ++c) v = Fma(coefficient[c], LoadHalf(column[c] + i), v);
-    Store(y + i, v);
+    Store(yb + i, v);
     prefetch.Consume(C * W * sizeof(std::uint16_t));
   }
   if (i < n) {  // the last rows in one masked vector
     const Tail mask = MakeTail(n - i);
-    vf v = LoadTail(y + i, mask);
+    vf v = LoadTail(yb + i, mask);
     for (int c = 0; c < C; ++c) v = Fma(coefficient[c], LoadHalf(column[c] + i), v);
-    StoreTail(y + i, mask, v);
+    StoreTail(yb + i, mask, v);
   }
 }
 
-// out[c] = l_c[0..n) . y[0..n) for C columns l_c = Column(l, nr, j + c) + row: y is read once.
+// out[c] = L_{j+c}[j+c..nr) . y[j+c..nr) for the C columns from j of a packed supernode, y read
+// once; y has a vector's room past nr, finite.
 template <int C>
-inline void DotColumns(const std::uint16_t* l, int nr, int j, int row, const float* y, int n, float* out,
-                       FactorPrefetch& prefetch) {
+inline void DotGroup(const std::uint16_t* l, int nr, int j, const float* y, float* out, FactorPrefetch& prefetch) {
   vf sum[C];
   const std::uint16_t* column[C];
-  for (int c = 0; c < C; ++c) sum[c] = Zero(), column[c] = Column(l, nr, j + c) + row;
+  for (int c = 0; c < C; ++c) {  // the triangle: rows j+c..j+C-1 of column j+c
+    column[c] = Column(l, nr, j + c);
+    sum[c] = KeepTail(LoadHalf(column[c] + j + c) * Load(y + j + c), MakeTail(C - c));
+  }
+  const int row = j + C, n = nr - row;
+  for (int c = 0; c < C; ++c) column[c] += row;
+  const float* yb = y + row;
   int i = 0;
   for (; i + W <= n; i += W) {
-    const vf v = Load(y + i);
+    const vf v = Load(yb + i);
     for (int c = 0; c < C; ++c) sum[c] = Fma(LoadHalf(column[c] + i), v, sum[c]);
     prefetch.Consume(C * W * sizeof(std::uint16_t));
   }
   if (i < n) {  // the last rows in one masked vector
     const Tail mask = MakeTail(n - i);
-    const vf v = LoadTail(y + i, mask);
+    const vf v = LoadTail(yb + i, mask);
     for (int c = 0; c < C; ++c) sum[c] = Fma(KeepTail(LoadHalf(column[c] + i), mask), v, sum[c]);
   }
   for (int c = 0; c < C; ++c) out[c] = Sum(sum[c]);
 }
 
 // group.template operator()<C>(j) for the columns [0, nc) in groups of C = 8, then 4, then the
-// last 1-3 together: each group's rows below are read and written once.
+// last 1-3 together: each group's rows are read and written once.
 template <typename Group>
 inline void ForColumnGroups(int nc, Group&& group) {
   int j = 0;
@@ -194,56 +195,32 @@ inline void ForColumnGroups(int nc, Group&& group) {
 
 void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
   FactorPrefetch prefetch(f.values, f.px[f.num_supernodes]);
-  for (int s = 0; s < f.num_supernodes; ++s) {  // L z = y
+  // Copies: y's stores could alias the view's floats, and the loops would re-read them.
+  const float t_unscale = f.triangle_unscale, b_unscale = f.below_unscale;
+  for (int s = 0; s < f.num_supernodes; ++s) {  // L z = y: z_D = T y_D, y_B -= W y_D
     const int k0 = f.super[s], nc = f.super[s + 1] - k0, nr = f.pi[s + 1] - f.pi[s];
     const std::uint16_t* l = f.values + f.px[s];
     prefetch.StartForward(f.px[s]);
     float* ys = y + k0;
-    // Diagonal block, four columns at a time: their 4 x 4 triangle by its stored inverse (no chain
-    // of divisions), then the rows below it; the last nc % 4 columns' triangle by its inverse too.
-    const int panels = nc / 4 * 4;
-    const float* inverse = f.panel_inverses + kPanelInverseFloats * f.first_panel[s];
-    for (int j0 = 0; j0 < panels; j0 += 4, inverse += kPanelInverseFloats) {
-      const __m128 z = PanelTimes(inverse, _mm_loadu_ps(ys + j0));
-      _mm_storeu_ps(ys + j0, z);
-      alignas(16) float minus[4];
-      _mm_store_ps(minus, _mm_sub_ps(_mm_setzero_ps(), z));
-      AxpyColumns<4>(minus, l, nr, j0, j0 + 4, ys + j0 + 4, nc - j0 - 4, prefetch);
-    }
-    if (panels < nc) RemainderTimes(inverse, nc - panels, ys + panels, false);
-    const int below = nr - nc;
-    if (below == 0) continue;
-    for (int i = 0; i < below; ++i) gathered[i] = 0.0f;
-    ForColumnGroups(nc, [&]<int C>(int j) { AxpyColumns<C>(ys + j, l, nr, j, nc, gathered, below, prefetch); });
-    const int* rows = f.rows + f.pi[s] + nc;
-    for (int i = 0; i < below; ++i) y[rows[i]] -= gathered[i];
+    for (int i = 0; i < nr; ++i) gathered[i] = 0.0f;
+    ForColumnGroups(nc, [&]<int C>(int j) { AxpyGroup<C>(ys + j, l, nr, j, gathered, prefetch); });
+    for (int i = 0; i < nc; ++i) ys[i] = t_unscale * gathered[i];
+    const int* rows = f.rows + f.pi[s];
+    for (int i = nc; i < nr; ++i) y[rows[i]] -= b_unscale * gathered[i];
   }
-  for (int s = f.num_supernodes - 1; s >= 0; --s) {  // L^T w = z
+  for (int s = f.num_supernodes - 1; s >= 0; --s) {  // L^T w = z: w_D = T^T z_D - W^T w_B
     const int k0 = f.super[s], nc = f.super[s + 1] - k0, nr = f.pi[s + 1] - f.pi[s];
     const std::uint16_t* l = f.values + f.px[s];
     prefetch.StartBackward(f.px[s + 1]);
     float* ys = y + k0;
-    const int below = nr - nc;
-    if (below > 0) {
-      const int* rows = f.rows + f.pi[s] + nc;
-      for (int i = 0; i < below; ++i) gathered[i] = y[rows[i]];
-      ForColumnGroups(nc, [&]<int C>(int j) {
-        float dots[C];
-        DotColumns<C>(l, nr, j, nc, gathered, below, dots, prefetch);
-        for (int c = 0; c < C; ++c) ys[j + c] -= dots[c];
-      });
-    }
-    // Diagonal block transposed: the last nc % 4 columns' triangle, then the panels from the last:
-    // dots with the solved rows below them, then their triangle's inverse transposed.
-    const int panels = nc / 4 * 4;
-    const float* inverse = f.panel_inverses + kPanelInverseFloats * (f.first_panel[s] + panels / 4);
-    if (panels < nc) RemainderTimes(inverse, nc - panels, ys + panels, true);
-    for (int j0 = panels - 4; j0 >= 0; j0 -= 4) {
-      inverse -= kPanelInverseFloats;
-      alignas(16) float dots[4];
-      DotColumns<4>(l, nr, j0, j0 + 4, ys + j0 + 4, nc - j0 - 4, dots, prefetch);
-      _mm_storeu_ps(ys + j0, PanelTimes(inverse + 16, _mm_sub_ps(_mm_loadu_ps(ys + j0), _mm_load_ps(dots))));
-    }
+    const int* rows = f.rows + f.pi[s];
+    for (int i = 0; i < nc; ++i) gathered[i] = t_unscale * ys[i];
+    for (int i = nc; i < nr; ++i) gathered[i] = -b_unscale * y[rows[i]];
+    ForColumnGroups(nc, [&]<int C>(int j) {
+      float dots[C];
+      DotGroup<C>(l, nr, j, gathered, dots, prefetch);
+      for (int c = 0; c < C; ++c) ys[j + c] = dots[c];
+    });
   }
 }
 
