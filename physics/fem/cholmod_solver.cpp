@@ -145,18 +145,11 @@ struct SingleFactor {
       half_px.resize(ns + 1);
       half_px[0] = 0;
       for (int s = 0; s < ns; ++s)
-        half_px[s + 1] = half_px[s] + PackedSupernodeEntries(pi[s + 1] - pi[s], super[s + 1] - super[s]);
-      half_values.assign(half_px[ns] + kHalfFactorPadding, 0);  // zeros past the end: the kernels read whole vectors
-      for (int s = 0; s < ns; ++s) {
-        const int nr = pi[s + 1] - pi[s], nc = super[s + 1] - super[s];
-        const double* block = inverse.data() + px[s];
-        std::uint16_t* out = half_values.data() + half_px[s];
-        for (int j = 0; j < nc; ++j) {  // packed: column j from its row j down
-          ConvertToHalfF16c(block + static_cast<std::ptrdiff_t>(j) * nr + j, nc - j, triangle_scale, out);
-          ConvertToHalfF16c(block + static_cast<std::ptrdiff_t>(j) * nr + nc, nr - nc, below_scale, out + nc - j);
-          out += nr - j;
-        }
-      }
+        half_px[s + 1] = half_px[s] + TiledSupernodeEntries(pi[s + 1] - pi[s], super[s + 1] - super[s]);
+      half_values.resize(half_px[ns]);
+      for (int s = 0; s < ns; ++s)
+        WriteTiledSupernodeF16c(inverse.data() + px[s], pi[s + 1] - pi[s], super[s + 1] - super[s], triangle_scale,
+                                below_scale, half_values.data() + half_px[s]);
       values.clear();
     } else {
       const double* x = static_cast<const double*>(l.x);

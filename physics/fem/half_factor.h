@@ -15,33 +15,46 @@ namespace vesica::physics {
 /// (T = L_D^-1, W = L_B L_D^-1), T times triangle_scale and W times below_scale (powers of two that
 /// keep each part's largest entry near 2^14: binary16 tops out at 65504). Then the solves are
 /// products with no chain of dependent steps inside a supernode: forward z_D = T y_D and
-/// y_B -= W y_D; backward w_D = T^T z_D - W^T w_B. Column-major like CHOLMOD's supernodal factor
-/// but packed: column j stores rows j..nr-1 only (T is lower triangular), from
-/// values[px[s] + j nr - j (j - 1) / 2]. CHOLMOD's layout also stores the zero upper triangle of
-/// each diagonal block (a fifth of the entries of a 3D grid's factor), and the solve streams the factor.
+/// y_B -= W y_D; backward w_D = T^T z_D - W^T w_B. From values[px[s]], in tiles: the columns in
+/// groups (HalfFactorGroupWidth), each group's rows from its first column's diagonal down in chunks
+/// of 8, a chunk's C columns of 8 rows one after the other (zeros above the diagonal and past nr).
+/// One contiguous stream a solve; CHOLMOD's layout would also store the zero upper triangle of each
+/// diagonal block (a fifth of the entries of a 3D grid's factor; the tiles' zeros are ~3 %).
 struct HalfFactorView {
   const int* super = nullptr;
   const int* pi = nullptr;
   const std::size_t* px = nullptr;
   const int* rows = nullptr;
   int num_supernodes = 0;
-  const std::uint16_t* values = nullptr;  ///< followed by kHalfFactorPadding readable entries
+  const std::uint16_t* values = nullptr;
   float triangle_unscale = 1.0f;          ///< 1 / triangle_scale
   float below_unscale = 1.0f;             ///< 1 / below_scale
 };
 
-/// Entries past the last the kernels may read (one vector of halves).
+/// Floats past a supernode's rows that the kernels read and write in `gathered` (one vector).
 constexpr int kHalfFactorPadding = 8;
 
-/// Entries of a supernode of nr rows and nc columns in the packed layout: nr nc - nc (nc - 1) / 2.
-inline std::size_t PackedSupernodeEntries(int rows, int columns) {
-  return static_cast<std::size_t>(rows) * columns - static_cast<std::size_t>(columns) * (columns - 1) / 2;
+/// Width of the column group that starts at column j of a supernode of nc columns: 8 while 8 are
+/// left, then 4, then the last 1-3 together.
+inline int HalfFactorGroupWidth(int nc, int j) { return nc - j >= 8 ? 8 : nc - j >= 4 ? 4 : nc - j; }
+
+/// Entries of a supernode of nr rows and nc columns in the tiled layout.
+inline std::size_t TiledSupernodeEntries(int rows, int columns) {
+  std::size_t entries = 0;
+  for (int j = 0, width = 0; j < columns; j += width) {
+    width = HalfFactorGroupWidth(columns, j);
+    entries += static_cast<std::size_t>(width) * 8 * ((rows - j + 7) / 8);
+  }
+  return entries;
 }
 
 /// True when this CPU runs the F16C kernels.
 bool HalfFactorSupported();
-/// out[k] = half(scale * x[k]); call only when HalfFactorSupported().
-void ConvertToHalfF16c(const double* x, std::size_t n, double scale, std::uint16_t* out);
+/// Writes a supernode's [T; W] (nr x nc, column-major in `block`) in the tiled layout, T's rows times
+/// triangle_scale and W's times below_scale (TiledSupernodeEntries(nr, nc) entries). Only when
+/// HalfFactorSupported().
+void WriteTiledSupernodeF16c(const double* block, int nr, int nc, double triangle_scale, double below_scale,
+                             std::uint16_t* out);
 /// y <- (L L^T)^-1 y in the factor's permuted order; `gathered` holds the widest supernode's row
 /// count plus one vector (kHalfFactorPadding) of floats, all finite. Only when HalfFactorSupported().
 void HalfFactorSolveF16c(const HalfFactorView& factor, float* y, float* gathered);

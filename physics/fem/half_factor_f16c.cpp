@@ -41,15 +41,6 @@ inline float Sum(vf v) {
   const __m128 t = _mm_add_ps(s, _mm_movehl_ps(s, s));
   return _mm_cvtss_f32(_mm_add_ss(t, _mm_movehdup_ps(t)));
 }
-// Lanes [0, m) set, m in 0..8: the last rows of a column in one masked vector (LoadHalf may read
-// past a column's end: into the next column or the factor's padding).
-using Tail = __m256i;
-inline Tail MakeTail(int m) {
-  return _mm256_cmpgt_epi32(_mm256_set1_epi32(m), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-}
-inline vf LoadTail(const float* p, Tail mask) { return _mm256_maskload_ps(p, mask); }
-inline void StoreTail(float* p, Tail mask, vf v) { _mm256_maskstore_ps(p, mask, v); }
-inline vf KeepTail(vf v, Tail mask) { return _mm256_and_ps(v, _mm256_castsi256_ps(mask)); }
 
 // Software prefetch a fixed distance ahead of the solve in the factor's values, paced by the bytes
 // the kernels read. Each solve streams the whole factor from L3 (6.4 MB for the SOFA beam, 4.3 MB for
@@ -95,82 +86,40 @@ class FactorPrefetch {
   std::ptrdiff_t budget_ = 0;
 };
 
-// Row i of column j of a packed supernode (half_factor.h) is Column(l, nr, j)[i], for i >= j.
-inline const std::uint16_t* Column(const std::uint16_t* l, int nr, int j) {
-  return l + static_cast<std::ptrdiff_t>(j) * nr - static_cast<std::ptrdiff_t>(j) * (j + 1) / 2;
-}
-
-// Lane k of v moved to lane k + shift; lanes outside [shift, end) zeroed.
-inline vf ShiftIntoRange(vf v, int shift, int end) {
-  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  const __m256i keep = _mm256_and_si256(_mm256_cmpgt_epi32(lane, _mm256_set1_epi32(shift - 1)),
-                                        _mm256_cmpgt_epi32(_mm256_set1_epi32(end), lane));
-  const vf moved = _mm256_permutevar8x32_ps(v, _mm256_sub_epi32(lane, _mm256_set1_epi32(shift)));
-  return _mm256_and_ps(moved, _mm256_castsi256_ps(keep));
-}
-
-// y[j..nr) += sum_c a[c] L_{j+c}, the C columns from j of a packed supernode (C <= 8): their own
-// triangle (rows j..j+C-1) as one vector, the column starts moved into place in registers, then
-// the rows below it, y read and written once for the C columns. y has a vector's room past nr
-// (the triangle's vector may reach past it, adding zeros).
+// y[0..8 chunks) += sum_c a[c] L_c over the tiles of a group of C columns (half_factor.h), y read
+// and written once for the C columns; returns the next group's tiles.
 template <int C>
-inline void AxpyGroup(const float* a, const std::uint16_t* l, int nr, int j, float* y, FactorPrefetch& prefetch) {
+inline const std::uint16_t* AxpyTiles(const float* a, const std::uint16_t* tile, int chunks, float* y,
+                                      FactorPrefetch& prefetch) {
   vf coefficient[C];
-  const std::uint16_t* column[C];
-  vf top = Zero();
-  for (int c = 0; c < C; ++c) {
-    coefficient[c] = Splat(a[c]);
-    column[c] = Column(l, nr, j + c);
-    top = Fma(coefficient[c], ShiftIntoRange(LoadHalf(column[c] + j + c), c, C), top);
-  }
-  Store(y + j, Load(y + j) + top);
-  const int row = j + C, n = nr - row;
-  for (int c = 0; c < C; ++c) column[c] += row;
-  float* yb = y + row;
-  int i = 0;
-  for (; i + W <= n; i += W) {
-    vf v = Load(yb + i);
-    for (int c = 0; c < C; ++c) v = Fma(coefficient[c], LoadHalf(column[c] + i), v);
-    Store(yb + i, v);
+  for (int c = 0; c < C; ++c) coefficient[c] = Splat(a[c]);
+  for (int k = 0; k < chunks; ++k, tile += C * W) {
+    vf v = Load(y + W * k);
+    for (int c = 0; c < C; ++c) v = Fma(coefficient[c], LoadHalf(tile + W * c), v);
+    Store(y + W * k, v);
     prefetch.Consume(C * W * sizeof(std::uint16_t));
   }
-  if (i < n) {  // the last rows in one masked vector
-    const Tail mask = MakeTail(n - i);
-    vf v = LoadTail(yb + i, mask);
-    for (int c = 0; c < C; ++c) v = Fma(coefficient[c], LoadHalf(column[c] + i), v);
-    StoreTail(yb + i, mask, v);
-  }
+  return tile;
 }
 
-// out[c] = L_{j+c}[j+c..nr) . y[j+c..nr) for the C columns from j of a packed supernode, y read
-// once; y has a vector's room past nr, finite.
+// out[c] = L_c . y[0..8 chunks) over the tiles of a group of C columns, y read once; returns the
+// next group's tiles.
 template <int C>
-inline void DotGroup(const std::uint16_t* l, int nr, int j, const float* y, float* out, FactorPrefetch& prefetch) {
+inline const std::uint16_t* DotTiles(const std::uint16_t* tile, int chunks, const float* y, float* out,
+                                     FactorPrefetch& prefetch) {
   vf sum[C];
-  const std::uint16_t* column[C];
-  for (int c = 0; c < C; ++c) {  // the triangle: rows j+c..j+C-1 of column j+c
-    column[c] = Column(l, nr, j + c);
-    sum[c] = KeepTail(LoadHalf(column[c] + j + c) * Load(y + j + c), MakeTail(C - c));
-  }
-  const int row = j + C, n = nr - row;
-  for (int c = 0; c < C; ++c) column[c] += row;
-  const float* yb = y + row;
-  int i = 0;
-  for (; i + W <= n; i += W) {
-    const vf v = Load(yb + i);
-    for (int c = 0; c < C; ++c) sum[c] = Fma(LoadHalf(column[c] + i), v, sum[c]);
+  for (int c = 0; c < C; ++c) sum[c] = Zero();
+  for (int k = 0; k < chunks; ++k, tile += C * W) {
+    const vf v = Load(y + W * k);
+    for (int c = 0; c < C; ++c) sum[c] = Fma(LoadHalf(tile + W * c), v, sum[c]);
     prefetch.Consume(C * W * sizeof(std::uint16_t));
-  }
-  if (i < n) {  // the last rows in one masked vector
-    const Tail mask = MakeTail(n - i);
-    const vf v = LoadTail(yb + i, mask);
-    for (int c = 0; c < C; ++c) sum[c] = Fma(KeepTail(LoadHalf(column[c] + i), mask), v, sum[c]);
   }
   for (int c = 0; c < C; ++c) out[c] = Sum(sum[c]);
+  return tile;
 }
 
-// group.template operator()<C>(j) for the columns [0, nc) in groups of C = 8, then 4, then the
-// last 1-3 together: each group's rows are read and written once.
+// group.template operator()<C>(j) for the column groups [j, j + C) of a supernode of nc columns
+// (HalfFactorGroupWidth: 8 while 8 are left, then 4, then the last 1-3 together).
 template <typename Group>
 inline void ForColumnGroups(int nc, Group&& group) {
   int j = 0;
@@ -199,18 +148,20 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
   const float t_unscale = f.triangle_unscale, b_unscale = f.below_unscale;
   for (int s = 0; s < f.num_supernodes; ++s) {  // L z = y: z_D = T y_D, y_B -= W y_D
     const int k0 = f.super[s], nc = f.super[s + 1] - k0, nr = f.pi[s + 1] - f.pi[s];
-    const std::uint16_t* l = f.values + f.px[s];
+    const std::uint16_t* tile = f.values + f.px[s];
     prefetch.StartForward(f.px[s]);
     float* ys = y + k0;
     for (int i = 0; i < nr; ++i) gathered[i] = 0.0f;
-    ForColumnGroups(nc, [&]<int C>(int j) { AxpyGroup<C>(ys + j, l, nr, j, gathered, prefetch); });
+    ForColumnGroups(nc, [&]<int C>(int j) {
+      tile = AxpyTiles<C>(ys + j, tile, (nr - j + W - 1) / W, gathered + j, prefetch);
+    });
     for (int i = 0; i < nc; ++i) ys[i] = t_unscale * gathered[i];
     const int* rows = f.rows + f.pi[s];
     for (int i = nc; i < nr; ++i) y[rows[i]] -= b_unscale * gathered[i];
   }
   for (int s = f.num_supernodes - 1; s >= 0; --s) {  // L^T w = z: w_D = T^T z_D - W^T w_B
     const int k0 = f.super[s], nc = f.super[s + 1] - k0, nr = f.pi[s + 1] - f.pi[s];
-    const std::uint16_t* l = f.values + f.px[s];
+    const std::uint16_t* tile = f.values + f.px[s];
     prefetch.StartBackward(f.px[s + 1]);
     float* ys = y + k0;
     const int* rows = f.rows + f.pi[s];
@@ -218,23 +169,29 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
     for (int i = nc; i < nr; ++i) gathered[i] = -b_unscale * y[rows[i]];
     ForColumnGroups(nc, [&]<int C>(int j) {
       float dots[C];
-      DotGroup<C>(l, nr, j, gathered, dots, prefetch);
+      tile = DotTiles<C>(tile, (nr - j + W - 1) / W, gathered + j, dots, prefetch);
       for (int c = 0; c < C; ++c) ys[j + c] = dots[c];
     });
   }
 }
 
-void ConvertToHalfF16c(const double* x, std::size_t n, double scale, std::uint16_t* out) {
-  std::size_t k = 0;
-  const __m256d s = _mm256_set1_pd(scale);
-  for (; k + 8 <= n; k += 8) {
-    const __m128 lo = _mm256_cvtpd_ps(_mm256_mul_pd(s, _mm256_loadu_pd(x + k)));
-    const __m128 hi = _mm256_cvtpd_ps(_mm256_mul_pd(s, _mm256_loadu_pd(x + k + 4)));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + k),
-                     _mm256_cvtps_ph(_mm256_set_m128(hi, lo), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
+void WriteTiledSupernodeF16c(const double* block, int nr, int nc, double triangle_scale, double below_scale,
+                             std::uint16_t* out) {
+  for (int j = 0, width = 0; j < nc; j += width) {
+    width = HalfFactorGroupWidth(nc, j);
+    for (int k0 = j; k0 < nr; k0 += W)
+      for (int c = j; c < j + width; ++c, out += W) {
+        alignas(32) float chunk[W];
+        for (int r = 0; r < W; ++r) {
+          const int row = k0 + r;
+          const double scale = row < nc ? triangle_scale : below_scale;
+          chunk[r] = row >= c && row < nr ? static_cast<float>(scale * block[static_cast<std::ptrdiff_t>(c) * nr + row])
+                                          : 0.0f;
+        }
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
+                         _mm256_cvtps_ph(_mm256_load_ps(chunk), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
+      }
   }
-  for (; k < n; ++k)
-    out[k] = _cvtss_sh(static_cast<float>(scale * x[k]), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
 }
 
 }  // namespace vesica::physics
