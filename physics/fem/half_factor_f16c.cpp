@@ -44,11 +44,11 @@ inline float Sum(vf v) {
 
 // Software prefetch a fixed distance ahead of the solve in the factor's values, paced by the bytes
 // the kernels read. Each solve streams the whole factor from L3 (6.4 MB for the SOFA beam, 4.3 MB for
-// the 2,900-node box: more than L2), and the hardware prefetchers, which stop at 4 KB pages and
-// follow up to eight interleaved column streams, left the solve at ~20 GB/s against ~30 for a plain
-// stream. The solve reads the factor in ascending order (forward) and descending supernodes
-// (backward), in both cases nearly in order within a supernode, so a cursor ahead of the current
-// supernode covers it. 64 KB (prefetched into L1, kept in L2 when L1 drops it) measured best
+// the 2,900-node box: more than L2), and the hardware prefetchers, which stop at 4 KB pages, left
+// the solve at ~20 GB/s against ~30 for a plain stream (with the factor by columns; in tiles, one
+// stream, the prefetch still takes 5-10 % off). The solve reads the factor in ascending order
+// (forward) and descending supernodes (backward), each supernode in order, so a cursor ahead of the
+// current supernode covers it. 64 KB (prefetched into L1, kept in L2 when L1 drops it) measured best
 // among 4 KB ... 256 KB, and better than prefetching to L2 only; the non-temporal hint made the
 // solve 2.5x slower (its lines leave L3 too, and the next solve reads them from memory).
 class FactorPrefetch {
