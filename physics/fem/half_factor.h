@@ -56,7 +56,7 @@ bool HalfFactorSupported();
 void WriteTiledSupernodeF16c(const double* block, int nr, int nc, double triangle_scale, double below_scale,
                              std::uint16_t* out);
 /// y <- (L L^T)^-1 y in the factor's permuted order; `gathered` holds the widest supernode's row
-/// count plus one vector (kHalfFactorPadding) of floats, all finite. Only when HalfFactorSupported().
+/// count plus kHalfFactorPadding floats. Only when HalfFactorSupported().
 void HalfFactorSolveF16c(const HalfFactorView& factor, float* y, float* gathered);
 
 }  // namespace vesica::physics

@@ -167,6 +167,9 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
     const int* rows = f.rows + f.pi[s];
     for (int i = 0; i < nc; ++i) gathered[i] = t_unscale * ys[i];
     for (int i = nc; i < nr; ++i) gathered[i] = -b_unscale * y[rows[i]];
+    // The tiles' zero rows past nr meet these: zeros, not what an earlier solve (maybe of a
+    // non-finite y) left there, since 0 x NaN is NaN.
+    for (int i = nr; i < nr + W; ++i) gathered[i] = 0.0f;
     ForColumnGroups(nc, [&]<int C>(int j) {
       float dots[C];
       tile = DotTiles<C>(tile, (nr - j + W - 1) / W, gathered + j, dots, prefetch);
