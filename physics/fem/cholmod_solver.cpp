@@ -76,28 +76,23 @@ void dtrmm_(const char* side, const char* uplo, const char* transa, const char* 
             std::size_t, std::size_t);
 }
 
-// CHOLMOD's supernodal factor with each supernode's [L_D; L_B] replaced by [L_D^-1; L_B L_D^-1]
-// (half_factor.h), same layout. False when some entry is not finite or a triangle is singular.
-bool PartitionedInverse(const cholmod_factor& l, std::vector<double>& out) {
-  const int ns = static_cast<int>(l.nsuper);
-  const int* super = static_cast<const int*>(l.super);
-  const int* pi = static_cast<const int*>(l.pi);
-  const int* px = static_cast<const int*>(l.px);
-  const double* x = static_cast<const double*>(l.x);
-  out.assign(x, x + px[ns]);
-  for (int s = 0; s < ns; ++s) {
-    const int nr = pi[s + 1] - pi[s], nc = super[s + 1] - super[s], below = nr - nc;
-    double* block = out.data() + px[s];
-    int info = 0;
-    dtrtri_("L", "N", &nc, block, &nr, &info, 1, 1);
-    if (info != 0) return false;
-    const double one = 1.0;
-    if (below > 0) dtrmm_("R", "L", "N", "N", &below, &nc, &one, block, &nr, block + nc, &nr, 1, 1, 1, 1);
-  }
+// One supernode's [L_D; L_B] (nr x nc, column-major) as [L_D^-1; L_B L_D^-1] (half_factor.h) in
+// `out`. False when its triangle is singular or an entry is not finite.
+bool PartitionedInverse(const double* block, int nr, int nc, std::vector<double>& out) {
+  out.assign(block, block + static_cast<std::ptrdiff_t>(nr) * nc);
+  int info = 0;
+  dtrtri_("L", "N", &nc, out.data(), &nr, &info, 1, 1);
+  if (info != 0) return false;
+  const int below = nr - nc;
+  const double one = 1.0;
+  if (below > 0) dtrmm_("R", "L", "N", "N", &below, &nc, &one, out.data(), &nr, out.data() + nc, &nr, 1, 1, 1, 1);
   for (double v : out)
     if (!std::isfinite(v)) return false;
   return true;
 }
+
+// The power of two that brings `largest` near 2^14 (binary16 tops out at 65504).
+double HalfScale(double largest) { return largest > 0.0 ? std::exp2(std::floor(std::log2(16384.0 / largest))) : 1.0; }
 
 // Supernodal L L^T = P A P^T with L rounded to float, or as its partitioned inverse in half
 // (half_factor.h). Supernode s holds columns [super[s], super[s+1]) as a dense column-major block
@@ -108,11 +103,39 @@ struct SingleFactor {
   std::vector<int> position;  // inverse of perm: entry j of b is y[position[j]]
   std::vector<float> values;
   std::vector<std::uint16_t> half_values;
-  std::vector<std::size_t> half_px;  // supernode starts in the packed half_values
-  double triangle_scale = 1.0;       // half_factor.h
-  double below_scale = 1.0;
+  std::vector<std::size_t> half_px;  // supernode starts in half_values
+  std::vector<float> unscales;       // HalfFactorView::unscales
   bool half = false;
   mutable Eigen::VectorXf y, gathered;
+
+  // The half copy: each supernode's partitioned inverse in tiles, T and W scaled by powers of two
+  // of their own. False (nothing usable kept) when some supernode has no finite inverse.
+  bool CopyHalf(const cholmod_factor& l) {
+    const int ns = static_cast<int>(l.nsuper);
+    const double* x = static_cast<const double*>(l.x);
+    half_px.resize(ns + 1);
+    half_px[0] = 0;
+    for (int s = 0; s < ns; ++s)
+      half_px[s + 1] = half_px[s] + TiledSupernodeEntries(pi[s + 1] - pi[s], super[s + 1] - super[s]);
+    half_values.resize(half_px[ns]);
+    unscales.resize(2 * static_cast<std::size_t>(ns));
+    std::vector<double> inverse;
+    for (int s = 0; s < ns; ++s) {
+      const int nr = pi[s + 1] - pi[s], nc = super[s + 1] - super[s];
+      if (!PartitionedInverse(x + px[s], nr, nc, inverse)) return false;
+      double largest_t = 0.0, largest_w = 0.0;
+      for (int j = 0; j < nc; ++j) {
+        const double* column = inverse.data() + static_cast<std::ptrdiff_t>(j) * nr;
+        for (int i = j; i < nc; ++i) largest_t = std::max(largest_t, std::abs(column[i]));
+        for (int i = nc; i < nr; ++i) largest_w = std::max(largest_w, std::abs(column[i]));
+      }
+      const double triangle_scale = HalfScale(largest_t), below_scale = HalfScale(largest_w);
+      WriteTiledSupernodeF16c(inverse.data(), nr, nc, triangle_scale, below_scale, half_values.data() + half_px[s]);
+      unscales[2 * s] = static_cast<float>(1.0 / triangle_scale);
+      unscales[2 * s + 1] = static_cast<float>(1.0 / below_scale);
+    }
+    return true;
+  }
 
   bool CopyFrom(const cholmod_factor& l, bool half_storage) {
     if (!l.is_super || !l.is_ll || l.xtype != CHOLMOD_REAL || l.itype != CHOLMOD_INT) return false;
@@ -127,36 +150,16 @@ struct SingleFactor {
     perm.assign(static_cast<const int*>(l.Perm), static_cast<const int*>(l.Perm) + n);
     position.resize(n);
     for (int k = 0; k < n; ++k) position[perm[k]] = k;
-    std::vector<double> inverse;
-    half = half_storage && HalfFactorSupported() && PartitionedInverse(l, inverse);
-    if (half) {
-      double largest_t = 0.0, largest_w = 0.0;
-      for (int s = 0; s < ns; ++s) {
-        const int nr = pi[s + 1] - pi[s], nc = super[s + 1] - super[s];
-        const double* block = inverse.data() + px[s];
-        for (int j = 0; j < nc; ++j) {
-          for (int i = j; i < nc; ++i) largest_t = std::max(largest_t, std::abs(block[j * nr + i]));
-          for (int i = nc; i < nr; ++i) largest_w = std::max(largest_w, std::abs(block[j * nr + i]));
-        }
-      }
-      // Powers of two that bring each part's largest entry near 2^14.
-      triangle_scale = std::exp2(std::floor(std::log2(16384.0 / largest_t)));
-      below_scale = largest_w > 0.0 ? std::exp2(std::floor(std::log2(16384.0 / largest_w))) : 1.0;
-      half_px.resize(ns + 1);
-      half_px[0] = 0;
-      for (int s = 0; s < ns; ++s)
-        half_px[s + 1] = half_px[s] + TiledSupernodeEntries(pi[s + 1] - pi[s], super[s + 1] - super[s]);
-      half_values.resize(half_px[ns]);
-      for (int s = 0; s < ns; ++s)
-        WriteTiledSupernodeF16c(inverse.data() + px[s], pi[s + 1] - pi[s], super[s + 1] - super[s], triangle_scale,
-                                below_scale, half_values.data() + half_px[s]);
-      values.clear();
-    } else {
+    half = half_storage && HalfFactorSupported() && CopyHalf(l);
+    if (!half) {
       const double* x = static_cast<const double*>(l.x);
       values.resize(px[ns]);
       for (size_t k = 0; k < values.size(); ++k) values[k] = static_cast<float>(x[k]);
       half_values.clear();
       half_px.clear();
+      unscales.clear();
+    } else {
+      values.clear();
     }
     y.resize(n);
     int widest = 0;
@@ -200,8 +203,7 @@ struct SingleFactor {
       view.super = super.data(), view.pi = pi.data(), view.px = half_px.data(), view.rows = rows.data();
       view.num_supernodes = ns;
       view.values = half_values.data();
-      view.triangle_unscale = static_cast<float>(1.0 / triangle_scale);
-      view.below_unscale = static_cast<float>(1.0 / below_scale);
+      view.unscales = unscales.data();
       HalfFactorSolveF16c(view, y.data(), gathered.data());
       return;
     }

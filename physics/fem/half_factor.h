@@ -12,8 +12,8 @@ namespace vesica::physics {
 /// Supernode s holds columns [super[s], super[s+1]) of pi[s+1] - pi[s] = nr rows (row indices
 /// rows[pi[s]...], the first nc ones its own columns). With L_D its nc x nc lower triangle and L_B
 /// the nr - nc rows below, it is stored as the partitioned inverse [T; W] = [L_D; L_B] L_D^-1
-/// (T = L_D^-1, W = L_B L_D^-1), T times triangle_scale and W times below_scale (powers of two that
-/// keep each part's largest entry near 2^14: binary16 tops out at 65504). Then the solves are
+/// (T = L_D^-1, W = L_B L_D^-1), T and W each times a power of two of the supernode's own that
+/// brings its largest entry near 2^14 (binary16 tops out at 65504). Then the solves are
 /// products with no chain of dependent steps inside a supernode: forward z_D = T y_D and
 /// y_B -= W y_D; backward w_D = T^T z_D - W^T w_B. From values[px[s]], in tiles: the columns in
 /// groups (HalfFactorGroupWidth), each group's rows from its first column's diagonal down in chunks
@@ -27,8 +27,8 @@ struct HalfFactorView {
   const int* rows = nullptr;
   int num_supernodes = 0;
   const std::uint16_t* values = nullptr;
-  float triangle_unscale = 1.0f;          ///< 1 / triangle_scale
-  float below_unscale = 1.0f;             ///< 1 / below_scale
+  /// Supernode s's T is stored times 1 / unscales[2 s], its W times 1 / unscales[2 s + 1].
+  const float* unscales = nullptr;
 };
 
 /// Floats past a supernode's rows that the kernels read and write in `gathered` (one vector).

@@ -144,10 +144,10 @@ inline void ForColumnGroups(int nc, Group&& group) {
 
 void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
   FactorPrefetch prefetch(f.values, f.px[f.num_supernodes]);
-  // Copies: y's stores could alias the view's floats, and the loops would re-read them.
-  const float t_unscale = f.triangle_unscale, b_unscale = f.below_unscale;
   for (int s = 0; s < f.num_supernodes; ++s) {  // L z = y: z_D = T y_D, y_B -= W y_D
     const int k0 = f.super[s], nc = f.super[s + 1] - k0, nr = f.pi[s + 1] - f.pi[s];
+    // Copies: y's stores could alias the view's floats, and the loops would re-read them.
+    const float t_unscale = f.unscales[2 * s], b_unscale = f.unscales[2 * s + 1];
     const std::uint16_t* tile = f.values + f.px[s];
     prefetch.StartForward(f.px[s]);
     float* ys = y + k0;
@@ -161,6 +161,7 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
   }
   for (int s = f.num_supernodes - 1; s >= 0; --s) {  // L^T w = z: w_D = T^T z_D - W^T w_B
     const int k0 = f.super[s], nc = f.super[s + 1] - k0, nr = f.pi[s + 1] - f.pi[s];
+    const float t_unscale = f.unscales[2 * s], b_unscale = f.unscales[2 * s + 1];
     const std::uint16_t* tile = f.values + f.px[s];
     prefetch.StartBackward(f.px[s + 1]);
     float* ys = y + k0;
