@@ -53,7 +53,7 @@ bool HalfFactorSupported();
 /// Writes a supernode's [T; W] (nr x nc, column-major in `block`) in the tiled layout, T's rows times
 /// triangle_scale and W's times below_scale (TiledSupernodeEntries(nr, nc) entries). Only when
 /// HalfFactorSupported().
-void WriteTiledSupernodeF16c(const double* block, int nr, int nc, double triangle_scale, double below_scale,
+void WriteTiledSupernodeF16c(const float* block, int nr, int nc, double triangle_scale, double below_scale,
                              std::uint16_t* out);
 /// y <- (L L^T)^-1 y in the factor's permuted order; `gathered` holds the widest supernode's row
 /// count plus kHalfFactorPadding floats. Only when HalfFactorSupported().

@@ -179,7 +179,7 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
   }
 }
 
-void WriteTiledSupernodeF16c(const double* block, int nr, int nc, double triangle_scale, double below_scale,
+void WriteTiledSupernodeF16c(const float* block, int nr, int nc, double triangle_scale, double below_scale,
                              std::uint16_t* out) {
   for (int j = 0, width = 0; j < nc; j += width) {
     width = HalfFactorGroupWidth(nc, j);
