@@ -43,7 +43,7 @@ inline float Sum(vf v) {
 }
 
 // Software prefetch a fixed distance ahead of the solve in the factor's values, paced by the bytes
-// the kernels read. Each solve streams the whole factor from L3 (6.4 MB for the SOFA beam, 4.3 MB for
+// the kernels read. Each solve streams the whole factor from L3 (6.6 MB for the SOFA beam, 4.4 MB for
 // the 2,900-node box: more than L2), and the hardware prefetchers, which stop at 4 KB pages, left
 // the solve at ~20 GB/s against ~30 for a plain stream (with the factor by columns; in tiles, one
 // stream, the prefetch still takes 5-10 % off). The solve reads the factor in ascending order
@@ -119,24 +119,28 @@ inline const std::uint16_t* DotTiles(const std::uint16_t* tile, int chunks, cons
 }
 
 // group.template operator()<C>(j) for the column groups [j, j + C) of a supernode of nc columns
-// (HalfFactorGroupWidth: 8 while 8 are left, then 4, then the last 1-3 together).
+// (HalfFactorGroupWidth, which the tiles' writer follows too).
 template <typename Group>
 inline void ForColumnGroups(int nc, Group&& group) {
-  int j = 0;
-  for (; j + 8 <= nc; j += 8) group.template operator()<8>(j);
-  for (; j + 4 <= nc; j += 4) group.template operator()<4>(j);
-  switch (nc - j) {
-    case 3:
-      group.template operator()<3>(j);
-      break;
-    case 2:
-      group.template operator()<2>(j);
-      break;
-    case 1:
-      group.template operator()<1>(j);
-      break;
-    default:
-      break;
+  for (int j = 0, width = 0; j < nc; j += width) {
+    width = HalfFactorGroupWidth(nc, j);
+    switch (width) {
+      case 8:
+        group.template operator()<8>(j);
+        break;
+      case 4:
+        group.template operator()<4>(j);
+        break;
+      case 3:
+        group.template operator()<3>(j);
+        break;
+      case 2:
+        group.template operator()<2>(j);
+        break;
+      default:
+        group.template operator()<1>(j);
+        break;
+    }
   }
 }
 
