@@ -3,7 +3,6 @@
 
 #include <immintrin.h>
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -42,62 +41,20 @@ inline float Sum(vf v) {
   return _mm_cvtss_f32(_mm_add_ss(t, _mm_movehdup_ps(t)));
 }
 
-// Software prefetch a fixed distance ahead of the solve in the factor's values, paced by the bytes
-// the kernels read. Each solve streams the whole factor from L3 (6.6 MB for the SOFA beam, 4.4 MB for
-// the 2,900-node box: more than L2), and the hardware prefetchers, which stop at 4 KB pages, left
-// the solve at ~20 GB/s against ~30 for a plain stream (with the factor by columns; in tiles, one
-// stream, the prefetch still takes 5-10 % off). The solve reads the factor in ascending order
-// (forward) and descending supernodes (backward), each supernode in order, so a cursor ahead of the
-// current supernode covers it. 64 KB (prefetched into L1, kept in L2 when L1 drops it) measured best
-// among 4 KB ... 256 KB, and better than prefetching to L2 only; the non-temporal hint made the
-// solve 2.5x slower (its lines leave L3 too, and the next solve reads them from memory).
-class FactorPrefetch {
- public:
-  static constexpr std::ptrdiff_t kDistanceBytes = 64 * 1024;
-
-  FactorPrefetch(const std::uint16_t* values, std::size_t entries)
-      : values_(reinterpret_cast<const char*>(values)),
-        size_(static_cast<std::ptrdiff_t>(entries * sizeof(std::uint16_t))) {}
-
-  // The solve moves on to a supernode whose values start at entry `first` (forward) or end before
-  // entry `last` (backward): keep the cursor at least the distance ahead of it.
-  void StartForward(std::size_t first) {
-    next_ = std::max(next_, Bytes(first) + kDistanceBytes);
-    step_ = 64;
-  }
-  void StartBackward(std::size_t last) {
-    next_ = std::min(next_, Bytes(last) - kDistanceBytes);
-    step_ = -64;
-  }
-  // The kernel has read `bytes` more of the factor: prefetch as many bytes further ahead.
-  void Consume(std::ptrdiff_t bytes) {
-    for (budget_ += bytes; budget_ >= 64; budget_ -= 64, next_ += step_)
-      if (next_ >= 0 && next_ < size_) _mm_prefetch(values_ + next_, _MM_HINT_T0);
-  }
-
- private:
-  static std::ptrdiff_t Bytes(std::size_t entries) {
-    return static_cast<std::ptrdiff_t>(entries * sizeof(std::uint16_t));
-  }
-  const char* values_;
-  std::ptrdiff_t size_;
-  std::ptrdiff_t next_ = 0;  // byte offset of the next line to prefetch
-  std::ptrdiff_t step_ = 64;
-  std::ptrdiff_t budget_ = 0;
-};
+// No software prefetch: the tiles are one stream a supernode, which the hardware prefetchers
+// follow; the 64 KB cursor that helped the column-major layout's interleaved column streams
+// (docs/performance/fem.md, round 9) made the tiled solve 3-5 % slower.
 
 // y[0..8 chunks) += sum_c a[c] L_c over the tiles of a group of C columns (half_factor.h), y read
 // and written once for the C columns; returns the next group's tiles.
 template <int C>
-inline const std::uint16_t* AxpyTiles(const float* a, const std::uint16_t* tile, int chunks, float* y,
-                                      FactorPrefetch& prefetch) {
+inline const std::uint16_t* AxpyTiles(const float* a, const std::uint16_t* tile, int chunks, float* y) {
   vf coefficient[C];
   for (int c = 0; c < C; ++c) coefficient[c] = Splat(a[c]);
   for (int k = 0; k < chunks; ++k, tile += C * W) {
     vf v = Load(y + W * k);
     for (int c = 0; c < C; ++c) v = Fma(coefficient[c], LoadHalf(tile + W * c), v);
     Store(y + W * k, v);
-    prefetch.Consume(C * W * sizeof(std::uint16_t));
   }
   return tile;
 }
@@ -105,14 +62,12 @@ inline const std::uint16_t* AxpyTiles(const float* a, const std::uint16_t* tile,
 // out[c] = L_c . y[0..8 chunks) over the tiles of a group of C columns, y read once; returns the
 // next group's tiles.
 template <int C>
-inline const std::uint16_t* DotTiles(const std::uint16_t* tile, int chunks, const float* y, float* out,
-                                     FactorPrefetch& prefetch) {
+inline const std::uint16_t* DotTiles(const std::uint16_t* tile, int chunks, const float* y, float* out) {
   vf sum[C];
   for (int c = 0; c < C; ++c) sum[c] = Zero();
   for (int k = 0; k < chunks; ++k, tile += C * W) {
     const vf v = Load(y + W * k);
     for (int c = 0; c < C; ++c) sum[c] = Fma(LoadHalf(tile + W * c), v, sum[c]);
-    prefetch.Consume(C * W * sizeof(std::uint16_t));
   }
   for (int c = 0; c < C; ++c) out[c] = Sum(sum[c]);
   return tile;
@@ -147,18 +102,14 @@ inline void ForColumnGroups(int nc, Group&& group) {
 }  // namespace
 
 void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
-  FactorPrefetch prefetch(f.values, f.px[f.num_supernodes]);
   for (int s = 0; s < f.num_supernodes; ++s) {  // L z = y: z_D = T y_D, y_B -= W y_D
     const int k0 = f.super[s], nc = f.super[s + 1] - k0, nr = f.pi[s + 1] - f.pi[s];
     // Copies: y's stores could alias the view's floats, and the loops would re-read them.
     const float t_unscale = f.unscales[2 * s], b_unscale = f.unscales[2 * s + 1];
     const std::uint16_t* tile = f.values + f.px[s];
-    prefetch.StartForward(f.px[s]);
     float* ys = y + k0;
     for (int i = 0; i < nr; ++i) gathered[i] = 0.0f;
-    ForColumnGroups(nc, [&]<int C>(int j) {
-      tile = AxpyTiles<C>(ys + j, tile, (nr - j + W - 1) / W, gathered + j, prefetch);
-    });
+    ForColumnGroups(nc, [&]<int C>(int j) { tile = AxpyTiles<C>(ys + j, tile, (nr - j + W - 1) / W, gathered + j); });
     for (int i = 0; i < nc; ++i) ys[i] = t_unscale * gathered[i];
     const int* rows = f.rows + f.pi[s];
     for (int i = nc; i < nr; ++i) y[rows[i]] -= b_unscale * gathered[i];
@@ -167,7 +118,6 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
     const int k0 = f.super[s], nc = f.super[s + 1] - k0, nr = f.pi[s + 1] - f.pi[s];
     const float t_unscale = f.unscales[2 * s], b_unscale = f.unscales[2 * s + 1];
     const std::uint16_t* tile = f.values + f.px[s];
-    prefetch.StartBackward(f.px[s + 1]);
     float* ys = y + k0;
     const int* rows = f.rows + f.pi[s];
     for (int i = 0; i < nc; ++i) gathered[i] = t_unscale * ys[i];
@@ -177,7 +127,7 @@ void HalfFactorSolveF16c(const HalfFactorView& f, float* y, float* gathered) {
     for (int i = nr; i < nr + W; ++i) gathered[i] = 0.0f;
     ForColumnGroups(nc, [&]<int C>(int j) {
       float dots[C];
-      tile = DotTiles<C>(tile, (nr - j + W - 1) / W, gathered + j, dots, prefetch);
+      tile = DotTiles<C>(tile, (nr - j + W - 1) / W, gathered + j, dots);
       for (int c = 0; c < C; ++c) ys[j + c] = dots[c];
     });
   }
