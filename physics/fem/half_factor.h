@@ -1,6 +1,6 @@
 #pragma once
-// Internal to cholmod_solver.cpp: a supernodal Cholesky factor stored as IEEE half (binary16)
-// times a power-of-two scale, solved in float. The preconditioner solve of kRotatedFactorPcg
+// Internal to cholmod_solver.cpp: a supernodal Cholesky factor stored as its partitioned inverse in
+// IEEE half (binary16) times power-of-two scales, solved in float. The preconditioner solve of kRotatedFactorPcg
 // streams the whole factor twice; half the bytes of the float copy. Needs F16C (with AVX2 and
 // FMA), compiled for it in half_factor_f16c.cpp and chosen at run time.
 
