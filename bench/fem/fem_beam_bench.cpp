@@ -13,6 +13,7 @@
 #include <string>
 
 #include "bench/fem/min_statistic.h"
+#include "bench/fem/spectrum_counters.h"
 #include "physics/fem/fem_body.h"
 #include "physics/mesh/primitives.h"
 
@@ -57,6 +58,7 @@ void BM_FemBeam(benchmark::State& state, ElementModel element, Eigen::Vector3i n
   body->SetExternalForces(gravity);
   body->Step();
   double iterations = 0.0, residual = 0.0, rejected = 0.0;
+  SpectrumCounters spectrum;
   for (auto _ : state) {
     if (body->state().steps >= 200) {
       state.PauseTiming();
@@ -67,6 +69,7 @@ void BM_FemBeam(benchmark::State& state, ElementModel element, Eigen::Vector3i n
     }
     const StepReport r = body->Step();
     iterations += r.solver_iterations;
+    spectrum.Add(r.solver_spectrum);
     residual = std::max(residual, r.relative_residual);
     rejected += r.accepted ? 0.0 : 1.0;
   }
@@ -76,6 +79,7 @@ void BM_FemBeam(benchmark::State& state, ElementModel element, Eigen::Vector3i n
   state.counters["pcg_iters"] = benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
   state.counters["max_rel_residual"] = residual;
   state.counters["rejected"] = rejected;
+  spectrum.Report(state);
 }
 
 const bool kRegistered = [] {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "bench/fem/min_statistic.h"
+#include "bench/fem/spectrum_counters.h"
 #include "physics/fem/fem_body.h"
 #include "physics/mesh/primitives.h"
 
@@ -65,12 +66,14 @@ void BM_FemStep(benchmark::State& state, ElementModel element, LinearSolverKind 
   Eigen::VectorXd pull = Eigen::VectorXd::Zero(model->num_dofs());
   body.Step();  // untimed: the first assembly and factorisation are pre-process (BM_FemPreprocess)
   double iterations = 0.0, residual = 0.0, rejected = 0.0;
+  SpectrumCounters spectrum;
   for (auto _ : state) {
     const double t = body.state().time_s;
     pull.segment<3>(3 * grasped) = 0.05 * std::sin(2.0 * M_PI * 2.0 * t) * Eigen::Vector3d(0.3, 0.0, 1.0);
     body.SetExternalForces(pull);
     const StepReport r = body.Step();
     iterations += r.solver_iterations;
+    spectrum.Add(r.solver_spectrum);
     residual = std::max(residual, r.relative_residual);
     rejected += r.accepted ? 0.0 : 1.0;
   }
@@ -79,6 +82,7 @@ void BM_FemStep(benchmark::State& state, ElementModel element, LinearSolverKind 
   state.counters["pcg_iters"] = benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
   state.counters["max_rel_residual"] = residual;
   state.counters["rejected"] = rejected;
+  spectrum.Report(state);
 }
 
 // The model, the first assembly and factorisation: with kCholmod the exact factor, with

@@ -405,7 +405,11 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
         m.pattern, w.system_values, rhs, du,
         [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { w.jacobi.Apply(res, z); }, tolerance, max_iterations);
   }
-  if (report) report->solver_iterations = r.iterations, report->relative_residual = r.relative_residual;
+  if (report) {
+    report->solver_iterations = r.iterations;
+    report->relative_residual = r.relative_residual;
+    report->solver_spectrum = r.spectrum;
+  }
   return du.allFinite();
 }
 

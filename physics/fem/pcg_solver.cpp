@@ -1,8 +1,10 @@
 #include "physics/fem/pcg_solver.h"
 
-#include <cmath>
-
 #include <Eigen/LU>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <span>
 
 #include "physics/fem/block_rows_simd.h"
 #include "physics/fem/elastic_forces.h"
@@ -234,11 +236,14 @@ PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen:
   preconditioner(r, z);
   double rz = r.dot(z);
   p.swap(z);  // p = z: z is written again before it is read
+  std::array<double, kPcgSpectrumIterations> alphas, betas;
+  int lanczos_steps = 0;
   for (int it = 1; it <= max_iterations; ++it) {
     apply(p, q);
     const double pq = p.dot(q);
     if (!(pq > 0.0)) break;  // not positive definite along p (or NaN): stop, caller checks
     const double alpha = rz / pq;
+    if (lanczos_steps < kPcgSpectrumIterations) alphas[lanczos_steps++] = alpha;
     x += alpha * p;
     r -= alpha * q;
     result.iterations = it;
@@ -246,11 +251,14 @@ PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen:
     if (r_norm <= target) break;
     preconditioner(r, z);
     const double rz_next = r.dot(z);
+    if (lanczos_steps <= kPcgSpectrumIterations - 1) betas[lanczos_steps - 1] = rz_next / rz;
     p = z + (rz_next / rz) * p;
     rz = rz_next;
   }
   result.relative_residual = r_norm / b_norm;
   result.converged = r_norm <= target;
+  result.spectrum = EstimateSpectrumFromCg(std::span(alphas.data(), lanczos_steps),
+                                           std::span(betas.data(), std::max(lanczos_steps - 1, 0)));
   if (final_product) *final_product = b - r;
   return result;
 }

@@ -2,11 +2,11 @@
 // Preconditioned conjugate gradient on a symmetric pattern matrix (gallbladder paper §2.2: tolerance
 // 1e-8, at most 20 iterations, warm started from the previous solution).
 
+#include <Eigen/Core>
 #include <functional>
 #include <vector>
 
-#include <Eigen/Core>
-
+#include "physics/fem/cg_spectrum_estimate.h"
 #include "physics/fem/sparse_pattern.h"
 
 namespace vesica::physics {
@@ -15,7 +15,14 @@ struct PcgResult {
   int iterations = 0;
   double relative_residual = 0.0;  ///< |b - A x| / |b| at exit (0 when b = 0)
   bool converged = false;
+  /// Extreme eigenvalues of P^-1 A from this solve's first kPcgSpectrumIterations iterations
+  /// ({0, 0} without an iteration): how well the preconditioner fits, and so the iteration count.
+  SpectrumEstimate spectrum;
 };
+
+/// Iterations whose coefficients PcgResult::spectrum is estimated from (the extremes converge
+/// first; a longer solve's later iterations would only sharpen them).
+inline constexpr int kPcgSpectrumIterations = 64;
 
 /// z = P^-1 r.
 using Preconditioner = std::function<void(const Eigen::VectorXd& r, Eigen::VectorXd& z)>;

@@ -169,6 +169,70 @@ TEST(PcgSolverTest, PcgWithBlockJacobiSolvesTheSystem) {
   EXPECT_LT((sys.dense * x - b).norm(), 1e-11 * b.norm());
 }
 
+// The eigenvalues of P^-1 A for block Jacobi P: those of the pencil (A, P).
+Eigen::VectorXd BlockJacobiPreconditionedSpectrum(const Eigen::MatrixXd& a) {
+  const Eigen::MatrixXd p = BlockPart(a, 0);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> pencil(a, p, Eigen::EigenvaluesOnly);
+  return pencil.eigenvalues();
+}
+
+TEST(PcgSolverTest, SpectrumEstimateConvergesToThePreconditionedSpectrumsEnds) {
+  const SmallSystem sys = MakeSystem();
+  BlockJacobiPreconditioner jacobi;
+  jacobi.Compute(sys.model.pattern, sys.values);
+  const Eigen::VectorXd exact = BlockJacobiPreconditionedSpectrum(sys.dense);
+  const double lowest = exact.minCoeff(), highest = exact.maxCoeff();
+  ASSERT_GT(highest / lowest, 1.5);  // a spectrum with ends to find, not a point
+  const Eigen::VectorXd b = TestVector(sys.model.num_dofs());
+  Eigen::VectorXd x;
+  const PcgResult r = SolvePcg(
+      sys.model.pattern, sys.values, b, x,
+      [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { jacobi.Apply(res, z); }, 1e-13, 1000);
+  ASSERT_TRUE(r.converged);
+  ASSERT_GT(r.iterations, 10);
+  // The ends converge first, the lowest (in a cluster of low modes) slowest: 7.5e-6 off here.
+  EXPECT_NEAR(r.spectrum.smallest, lowest, 1e-4 * lowest);
+  EXPECT_NEAR(r.spectrum.largest, highest, 1e-4 * highest);
+  EXPECT_NEAR(r.spectrum.condition(), highest / lowest, 2e-4 * highest / lowest);
+}
+
+TEST(PcgSolverTest, SpectrumEstimateOfAShortSolveLiesInsideTheSpectrum) {
+  // Ritz values interlace: after a few iterations the estimate is an inner bound, not yet the ends.
+  const SmallSystem sys = MakeSystem();
+  BlockJacobiPreconditioner jacobi;
+  jacobi.Compute(sys.model.pattern, sys.values);
+  const Eigen::VectorXd exact = BlockJacobiPreconditionedSpectrum(sys.dense);
+  const Eigen::VectorXd b = TestVector(sys.model.num_dofs());
+  Eigen::VectorXd x;
+  const PcgResult r = SolvePcg(
+      sys.model.pattern, sys.values, b, x,
+      [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { jacobi.Apply(res, z); }, 1e-13, 3);
+  ASSERT_EQ(r.iterations, 3);
+  EXPECT_GE(r.spectrum.smallest, exact.minCoeff() * (1.0 - 1e-12));
+  EXPECT_LE(r.spectrum.largest, exact.maxCoeff() * (1.0 + 1e-12));
+  EXPECT_LT(r.spectrum.smallest, r.spectrum.largest);
+  EXPECT_GT(r.spectrum.smallest - exact.minCoeff(), 1e-3 * exact.minCoeff());  // not converged yet
+}
+
+TEST(PcgSolverTest, SpectrumEstimateOfADiagonalSystemIsItsEigenvalues) {
+  // A = diag(1, 2, ..., 6), no preconditioner, b touching every eigenvector: six iterations
+  // span the whole space, and the Ritz values are the eigenvalues.
+  const int n = 6;
+  const MatrixOperator apply = [](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+    out = in.cwiseProduct(Eigen::VectorXd::LinSpaced(6, 1.0, 6.0));
+  };
+  const Preconditioner identity = [](const Eigen::VectorXd& res, Eigen::VectorXd& z) { z = res; };
+  Eigen::VectorXd x;
+  const PcgResult r = SolvePcg(apply, Eigen::VectorXd::Ones(n), x, identity, 1e-14, n);
+  EXPECT_EQ(r.iterations, n);
+  EXPECT_NEAR(r.spectrum.smallest, 1.0, 1e-10);
+  EXPECT_NEAR(r.spectrum.largest, 6.0, 1e-10);
+  Eigen::VectorXd none;
+  const PcgResult zero = SolvePcg(apply, Eigen::VectorXd::Zero(n), none, identity, 1e-14, n);
+  EXPECT_EQ(zero.spectrum.smallest, 0.0);
+  EXPECT_EQ(zero.spectrum.condition(), 0.0);
+}
+
 TEST(PcgSolverTest, GivenInitialProductReplacesTheFirstProduct) {
   // The warm start's product handed in must give the same iterates as PCG computing it, with one
   // product fewer.
