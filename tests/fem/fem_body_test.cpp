@@ -93,6 +93,40 @@ TEST(FemBodyTest, BackwardEulerDampsAModeAsOneOverSqrtOnePlusOmegaHSquared) {
   }
 }
 
+// Rayleigh damping D = alpha M + beta K keeps the modes apart, so the first mode's coordinates
+// follow Newmark's average-acceleration recurrence for q'' + (alpha + beta omega^2) q' + omega^2 q = 0
+// step for step (the damping drive D v enters every step's right-hand side).
+TEST(FemBodyTest, NewmarkWithRayleighDampingFollowsTheModalRecurrence) {
+  for (LinearSolverKind solver : {LinearSolverKind::kCholmod, LinearSolverKind::kRotatedFactorPcg}) {
+    ModalBlock b = MakeModalBlock(TimeIntegrator::kNewmark, 20.0);
+    FemSettings s = b.model->settings;
+    s.solver = solver;
+    s.pcg_relative_tolerance = 1e-12;
+    s.rayleigh_mass_per_s = 0.2 * b.omega;  // zeta = 0.1 + 0.05: a few per cent a step
+    s.rayleigh_stiffness_s = 0.1 / b.omega;
+    const TetrahedralMesh& mesh = b.model->rest_mesh;
+    b.model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
+    FemBody body(b.model);
+    const double h = s.time_step_s, k = b.omega * b.omega;
+    const double c = s.rayleigh_mass_per_s + s.rayleigh_stiffness_s * k;
+    double q = 1e-3, v = 0.3 * b.omega * 1e-3, a = -(c * v + k * q);
+    body.SetState(q * b.mode, v * b.mode);
+    for (int step = 0; step < 60; ++step) {
+      ASSERT_TRUE(body.Step().accepted);
+      const double a_next =
+          -(c * (v + 0.5 * h * a) + k * (q + h * v + 0.25 * h * h * a)) / (1.0 + 0.5 * c * h + 0.25 * k * h * h);
+      q += h * v + 0.25 * h * h * (a + a_next);
+      v += 0.5 * h * (a + a_next);
+      a = a_next;
+      const double body_q = b.mode.dot(b.model->MassTimes(body.state().displacement_m));
+      const double body_v = b.mode.dot(b.model->MassTimes(body.state().velocity_m_per_s));
+      EXPECT_NEAR(body_q, q, 1e-9 * 1e-3) << "step " << step;
+      EXPECT_NEAR(body_v, v, 1e-9 * 1e-3 * b.omega) << "step " << step;
+    }
+    EXPECT_LT(std::hypot(q, v / b.omega), 0.1 * 1e-3);  // it really decayed (exp(-zeta omega t) = 0.06)
+  }
+}
+
 // First bending frequency of the cantilever against Euler-Bernoulli,
 // omega_1 = 1.8751^2 sqrt(EI / (rho A L^4)), measured from the period of the released tip.
 TEST(FemBodyTest, CantileverFirstBendingFrequencyWithinFivePercentOfBeamTheory) {
