@@ -179,8 +179,9 @@ size_t TurnedGradientSize(const FemModel& m) {
 }
 
 double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eigen::VectorXd& u,
-                              Eigen::VectorXd* tangent, Eigen::VectorXd* force, std::vector<Eigen::Vector4d>& cache,
-                              std::vector<double>* turned_gradients, double* smallest_turn_cosine) {
+                              Eigen::VectorXd* tangent, double tangent_scale, Eigen::VectorXd* force,
+                              std::vector<Eigen::Vector4d>& cache, std::vector<double>* turned_gradients,
+                              double* smallest_turn_cosine) {
   if (static_cast<int>(cache.size()) != m.rest_mesh.num_tets())
     cache.assign(m.rest_mesh.num_tets(), Eigen::Vector4d(0, 0, 0, 1));
   force->setZero(u.size());
@@ -188,6 +189,7 @@ double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eig
   if (tangent) {
     tangent->resize(m.pattern.structure.nonZeros());  // the pass writes every value
     args.tangent = tangent->data();
+    args.tangent_scale = tangent_scale;
     args.tangent_blocks = &m.tangent_blocks;
     thread_local std::vector<double> corner_vectors;
     corner_vectors.resize(static_cast<size_t>(kCornerVectorFields) * m.rest_mesh.num_tets());
@@ -251,14 +253,14 @@ ElementKernel ResolveElementKernel(ElementKernel requested) {
 
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
                             Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
-                            std::vector<double>* turned_gradients, double* largest_turn_rad) {
+                            std::vector<double>* turned_gradients, double* largest_turn_rad, double tangent_scale) {
   const ElementKernel kernel = ResolveElementKernel(model.settings.element_kernel);
   double smallest_turn_cosine = 1.0;  // |q_before . q_after| = cos(turn / 2)
   double energy = 0.0;
   if (model.settings.element_model == ElementModel::kCorotational && rotation_cache &&
       kernel != ElementKernel::kScalar && model.element_batches.num_tets == model.rest_mesh.num_tets() &&
       (!tangent_values || model.tangent_blocks.num_pairs() > 0)) {  // writes every turned gradient: no clear
-    energy = SimdCorotationalForces(model, kernel, u, tangent_values, internal_force_N, *rotation_cache,
+    energy = SimdCorotationalForces(model, kernel, u, tangent_values, tangent_scale, internal_force_N, *rotation_cache,
                                     turned_gradients, &smallest_turn_cosine);
   } else {
     if (turned_gradients) turned_gradients->clear();  // only the SIMD pass fills them
@@ -266,6 +268,7 @@ double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eig
       energy = LinearForces(model, u, tangent_values, internal_force_N);
     else
       energy = CorotationalForces(model, u, tangent_values, internal_force_N, rotation_cache, &smallest_turn_cosine);
+    if (tangent_values && tangent_scale != 1.0) *tangent_values *= tangent_scale;
   }
   if (largest_turn_rad) {
     *largest_turn_rad = smallest_turn_cosine > 0.0 ? 2.0 * std::acos(std::min(1.0, smallest_turn_cosine))

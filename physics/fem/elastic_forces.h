@@ -23,10 +23,13 @@ ElementKernel ResolveElementKernel(ElementKernel requested);
 /// runs model.settings.element_kernel (ResolveElementKernel). turned_gradients (optional, with a
 /// cache): the SIMD pass leaves R grad N_b there for CorotationalTangentTimes (emptied otherwise).
 /// largest_turn_rad (optional): the largest angle any tet turned since the cache was last written
-/// (0 for a linear body, +inf for a corotational one without a cache).
+/// (0 for a linear body, +inf for a corotational one without a cache). tangent_scale: the tangent
+/// values are tangent_scale K_t (an implicit step's stiffness factor, applied in the SIMD pass's one
+/// write of each value instead of another pass over them).
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
                             Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache = nullptr,
-                            std::vector<double>* turned_gradients = nullptr, double* largest_turn_rad = nullptr);
+                            std::vector<double>* turned_gradients = nullptr, double* largest_turn_rad = nullptr,
+                            double tangent_scale = 1.0);
 
 /// y = K_t x for a corotational body without assembling K_t (the tangent ComputeElasticForces
 /// assembles, R K R^T per tet, at the rotations it left in rotation_cache), element by element

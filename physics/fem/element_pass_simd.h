@@ -19,6 +19,7 @@ struct ElementPassArgs {
   double* rotation_cache = nullptr;      ///< 4 per tet (x y z w), read and updated
   double* force = nullptr;               ///< 3n, zeroed by the caller, accumulated
   double* tangent = nullptr;             ///< nnz pattern values, all written; null: skip
+  double tangent_scale = 1.0;            ///< tangent receives tangent_scale K_t
   /// With tangent: the model's node pairs (tangent_blocks.h) and a scratch array of
   /// kCornerVectorFields doubles a tet for the corner vectors the pairs are assembled from.
   const TangentBlocks* tangent_blocks = nullptr;

@@ -20,8 +20,9 @@
 namespace vesica::physics {
 
 struct FemBody::Workspace {
-  Eigen::VectorXd tangent_values;  // K_t at the state the system was assembled at
-  Eigen::VectorXd system_values;   // S with Dirichlet rows/columns replaced by identity
+  // S (SystemValuesFromTangent) at the state it was assembled at, Dirichlet rows and columns the
+  // identity's; no copy of K_t is kept (TangentTimes recovers K_t x from S).
+  Eigen::VectorXd system_values;
   Eigen::VectorXd internal_force;
   double elastic_energy = 0.0;
   bool system_assembled = false;  // S exists (for the last step, or the current state)
@@ -159,10 +160,28 @@ void FemBody::DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
 bool FemBody::MatrixFree() const { return TangentIsMatrixFree(model_->settings); }
 
 void FemBody::TangentTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  if (MatrixFree())
+  if (MatrixFree()) {
     CorotationalTangentTimes(*model_, work_->rotations, x, y, &work_->turned_gradients);
+    return;
+  }
+  // From S = stiffness K_t + mass M + springs, the only matrix kept: on the free dofs
+  // K_t x = (S x - mass M x - springs x) / stiffness, x's fixed entries taken as 0 (S's fixed rows
+  // and columns are the identity's). Fixed rows get 0; every caller drops them.
+  const FemModel& m = *model_;
+  const Workspace& w = *work_;
+  const SystemScales scale = SystemMatrixScales(m.settings);
+  const Eigen::VectorXd free_x = x.cwiseProduct(m.free_dofs);
+  SymmetricPatternMultiply(m.pattern, w.system_values, free_x, y);
+  if (m.uses_consistent_mass())
+    y -= scale.mass * (PatternMatrix(m.pattern, m.consistent_mass_values) * free_x);
   else
-    SymmetricPatternMultiply(model_->pattern, work_->tangent_values, x, y);
+    y -= scale.mass * m.lumped_mass_kg.cwiseProduct(free_x);
+  if (w.attachment.any) {
+    const double c_damping = IntegratorCoefficients(m.settings).damping;
+    y -= (w.attachment.stiffness_N_per_m + c_damping * w.attachment.damping_Ns_per_m).cwiseProduct(free_x);
+  }
+  y /= scale.stiffness;
+  for (int i : m.fixed_dofs) y[i] = 0.0;
 }
 
 void FemBody::SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
@@ -172,8 +191,7 @@ void FemBody::SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   const FemSettings& s = m.settings;
   const Workspace& w = *work_;
   const SystemCoefficients c = IntegratorCoefficients(s);
-  const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;
-  const double stiffness_scale = 1.0 + c.damping * s.rayleigh_stiffness_s;
+  const auto [mass_scale, stiffness_scale] = SystemMatrixScales(s);
   // PCG's directions and warm starts are 0 on the fixed dofs already: then x is its own free part,
   // and no masked copy is made.
   bool fixed_zero = true;
@@ -203,8 +221,7 @@ double FemBody::TangentQuadraticForm(const Eigen::VectorXd& du) const {
   // fixed dofs have du = 0 (their rows are the identity's and the right-hand side is 0 there).
   const FemSettings& s = m.settings;
   const SystemCoefficients c = IntegratorCoefficients(s);
-  const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;
-  const double stiffness_scale = 1.0 + c.damping * s.rayleigh_stiffness_s;
+  const auto [mass_scale, stiffness_scale] = SystemMatrixScales(s);
   double diagonal = mass_scale * du.cwiseAbs2().dot(m.lumped_mass_kg.cwiseProduct(m.free_dofs));
   if (w.attachment.any)
     diagonal += du.cwiseAbs2().dot(
@@ -224,26 +241,31 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
     w.system_assembled = true;
     return;
   }
-  // A linear body's K never changes: copy it once, then only f = K u is needed.
+  // A linear body's K never changes: S is built once, then only f = K u is needed. The pass writes
+  // stiffness K_t straight into S's values; the mass and spring terms follow on the diagonal.
   double turn = 0.0;
-  w.elastic_energy = ComputeElasticForces(m, u, (linear && w.linear_system_built) ? nullptr : &w.tangent_values,
-                                          &w.internal_force, &w.rotations, nullptr, &turn);
+  w.elastic_energy =
+      ComputeElasticForces(m, u, (linear && w.linear_system_built) ? nullptr : &w.system_values, &w.internal_force,
+                           &w.rotations, nullptr, &turn, SystemMatrixScales(s).stiffness);
   w.rotation_drift_rad += turn;
   w.system_assembled = true;
   if (linear && w.linear_system_built) return;
-  SystemValuesFromTangent(w.tangent_values, w.system_values);
+  AddSystemTerms(w.system_values);
   w.linear_system_built = linear;
   w.factor_matches_system = false;
 }
 
 void FemBody::SystemValuesFromTangent(const Eigen::VectorXd& tangent, Eigen::VectorXd& system) const {
+  system = SystemMatrixScales(model_->settings).stiffness * tangent;
+  AddSystemTerms(system);
+}
+
+void FemBody::AddSystemTerms(Eigen::VectorXd& system) const {
   const FemModel& m = *model_;
   const FemSettings& s = m.settings;
   const Workspace& w = *work_;
   const SystemCoefficients c = IntegratorCoefficients(s);
-  const double mass_scale = c.mass + c.damping * s.rayleigh_mass_per_s;
-  const double stiffness_scale = 1.0 + c.damping * s.rayleigh_stiffness_s;
-  system = stiffness_scale * tangent;
+  const double mass_scale = SystemMatrixScales(s).mass;
   if (m.uses_consistent_mass()) {
     system += mass_scale * m.consistent_mass_values;
   } else {

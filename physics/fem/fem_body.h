@@ -75,14 +75,19 @@ class FemBody {
  private:
   struct Workspace;
   void AssembleSystem(const Eigen::VectorXd& u);
+  /// S = stiffness K_t + the mass and spring terms (AddSystemTerms), for a K_t given whole.
   void SystemValuesFromTangent(const Eigen::VectorXd& tangent, Eigen::VectorXd& system) const;
+  /// Adds mass M (+ springs) to values holding stiffness K_t, then makes the Dirichlet rows and
+  /// columns the identity's.
+  void AddSystemTerms(Eigen::VectorXd& system) const;
   void UpdateNodeRotations();
   bool SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, double tolerance, int max_iterations,
                    StepReport* report);
   void DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   /// The tangent is applied element by element instead of assembled (settings.rotated_factor_matrix_free).
   bool MatrixFree() const;
-  /// y = K_t x, assembled or element by element.
+  /// y = K_t x, element by element or from S (then 0 on the fixed dofs, and x's fixed entries
+  /// taken as 0).
   void TangentTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   /// y = S x (the system matrix SystemValuesFromTangent builds) from products, for MatrixFree().
   void SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;

@@ -8,6 +8,11 @@ SystemCoefficients IntegratorCoefficients(const FemSettings& s) {
   return {1.0 / (s.newmark_beta * h * h), s.newmark_gamma / (s.newmark_beta * h)};
 }
 
+SystemScales SystemMatrixScales(const FemSettings& s) {
+  const SystemCoefficients c = IntegratorCoefficients(s);
+  return {c.mass + c.damping * s.rayleigh_mass_per_s, 1.0 + c.damping * s.rayleigh_stiffness_s};
+}
+
 // Newmark: a+ = a0 du - a2 v - a3 a, v+ = a1 du - a4 v - a5 a with a0 = 1/(beta h^2),
 // a1 = gamma/(beta h), a2 = 1/(beta h), a3 = 1/(2 beta) - 1, a4 = gamma/beta - 1,
 // a5 = h (gamma/(2 beta) - 1). Substituting into M a+ + D v+ + f_int + K du = f gives the drives.

@@ -18,6 +18,15 @@ struct SystemCoefficients {
 
 SystemCoefficients IntegratorCoefficients(const FemSettings& settings);
 
+/// S = stiffness K_t + mass M (+ springs) with Rayleigh damping D = alpha M + beta K_t folded in:
+/// stiffness = 1 + c_D beta (>= 1), mass = c_M + c_D alpha.
+struct SystemScales {
+  double mass = 0.0;
+  double stiffness = 1.0;
+};
+
+SystemScales SystemMatrixScales(const FemSettings& settings);
+
 /// The vectors multiplied by M and D on the right-hand side (m_drive, d_drive), from v and a.
 void IntegratorDrives(const FemSettings& settings, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
                       Eigen::VectorXd& mass_drive, Eigen::VectorXd& damping_drive);
