@@ -156,15 +156,21 @@ TEST(PcgSolverTest, FloatBlockRowSweepsAreTheTriangularSolvesOfTheRoundedMatrix)
   EXPECT_GT((sweep - exact).norm(), 1e-14 * exact.norm());
 }
 
-TEST(PcgSolverTest, PcgWithBlockJacobiSolvesTheSystem) {
-  const SmallSystem sys = MakeSystem();
+// PCG with block Jacobi on the small system from zero, right-hand side TestVector.
+PcgResult SolveWithBlockJacobi(const SmallSystem& sys, double tolerance, int max_iterations, Eigen::VectorXd& x) {
   BlockJacobiPreconditioner jacobi;
   jacobi.Compute(sys.model.pattern, sys.values);
+  x.resize(0);
+  return SolvePcg(
+      sys.model.pattern, sys.values, TestVector(sys.model.num_dofs()), x,
+      [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { jacobi.Apply(res, z); }, tolerance, max_iterations);
+}
+
+TEST(PcgSolverTest, PcgWithBlockJacobiSolvesTheSystem) {
+  const SmallSystem sys = MakeSystem();
   const Eigen::VectorXd b = TestVector(sys.model.num_dofs());
   Eigen::VectorXd x;
-  const PcgResult r = SolvePcg(
-      sys.model.pattern, sys.values, b, x,
-      [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { jacobi.Apply(res, z); }, 1e-12, 1000);
+  const PcgResult r = SolveWithBlockJacobi(sys, 1e-12, 1000, x);
   EXPECT_TRUE(r.converged);
   EXPECT_LT((sys.dense * x - b).norm(), 1e-11 * b.norm());
 }
@@ -178,16 +184,11 @@ Eigen::VectorXd BlockJacobiPreconditionedSpectrum(const Eigen::MatrixXd& a) {
 
 TEST(PcgSolverTest, SpectrumEstimateConvergesToThePreconditionedSpectrumsEnds) {
   const SmallSystem sys = MakeSystem();
-  BlockJacobiPreconditioner jacobi;
-  jacobi.Compute(sys.model.pattern, sys.values);
   const Eigen::VectorXd exact = BlockJacobiPreconditionedSpectrum(sys.dense);
   const double lowest = exact.minCoeff(), highest = exact.maxCoeff();
   ASSERT_GT(highest / lowest, 1.5);  // a spectrum with ends to find, not a point
-  const Eigen::VectorXd b = TestVector(sys.model.num_dofs());
   Eigen::VectorXd x;
-  const PcgResult r = SolvePcg(
-      sys.model.pattern, sys.values, b, x,
-      [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { jacobi.Apply(res, z); }, 1e-13, 1000);
+  const PcgResult r = SolveWithBlockJacobi(sys, 1e-13, 1000, x);
   ASSERT_TRUE(r.converged);
   ASSERT_GT(r.iterations, 10);
   // The ends converge first, the lowest (in a cluster of low modes) slowest: 7.5e-6 off here.
@@ -199,14 +200,9 @@ TEST(PcgSolverTest, SpectrumEstimateConvergesToThePreconditionedSpectrumsEnds) {
 TEST(PcgSolverTest, SpectrumEstimateOfAShortSolveLiesInsideTheSpectrum) {
   // Ritz values interlace: after a few iterations the estimate is an inner bound, not yet the ends.
   const SmallSystem sys = MakeSystem();
-  BlockJacobiPreconditioner jacobi;
-  jacobi.Compute(sys.model.pattern, sys.values);
   const Eigen::VectorXd exact = BlockJacobiPreconditionedSpectrum(sys.dense);
-  const Eigen::VectorXd b = TestVector(sys.model.num_dofs());
   Eigen::VectorXd x;
-  const PcgResult r = SolvePcg(
-      sys.model.pattern, sys.values, b, x,
-      [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { jacobi.Apply(res, z); }, 1e-13, 3);
+  const PcgResult r = SolveWithBlockJacobi(sys, 1e-13, 3, x);
   ASSERT_EQ(r.iterations, 3);
   EXPECT_GE(r.spectrum.smallest, exact.minCoeff() * (1.0 - 1e-12));
   EXPECT_LE(r.spectrum.largest, exact.maxCoeff() * (1.0 + 1e-12));
