@@ -159,8 +159,10 @@ void FemBody::DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
 
 bool FemBody::MatrixFree() const { return TangentIsMatrixFree(model_->settings); }
 
+bool FemBody::ProductsMatrixFree() const { return ProductsAreMatrixFree(model_->settings); }
+
 void FemBody::TangentTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  if (MatrixFree()) {
+  if (ProductsMatrixFree()) {
     CorotationalTangentTimes(*model_, work_->rotations, x, y, &work_->turned_gradients);
     return;
   }
@@ -242,11 +244,12 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
     return;
   }
   // A linear body's K never changes: S is built once, then only f = K u is needed. The pass writes
-  // stiffness K_t straight into S's values; the mass and spring terms follow on the diagonal.
+  // stiffness K_t straight into S's values; the mass and spring terms follow on the diagonal. With
+  // matrix-free products (the sweeps' S assembled all the same) it also leaves the turned gradients.
   double turn = 0.0;
-  w.elastic_energy =
-      ComputeElasticForces(m, u, (linear && w.linear_system_built) ? nullptr : &w.system_values, &w.internal_force,
-                           &w.rotations, nullptr, &turn, SystemMatrixScales(s).stiffness);
+  w.elastic_energy = ComputeElasticForces(
+      m, u, (linear && w.linear_system_built) ? nullptr : &w.system_values, &w.internal_force, &w.rotations,
+      ProductsMatrixFree() ? &w.turned_gradients : nullptr, &turn, SystemMatrixScales(s).stiffness);
   w.rotation_drift_rad += turn;
   w.system_assembled = true;
   if (linear && w.linear_system_built) return;
@@ -386,7 +389,7 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
       w.local_correction.Clear();
     }
     const MatrixOperator system_times = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-      if (MatrixFree())
+      if (ProductsMatrixFree())
         SystemTimes(x, y);
       else
         SymmetricPatternMultiply(m.pattern, w.system_values, x, y);

@@ -84,12 +84,14 @@ class FemBody {
   bool SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, double tolerance, int max_iterations,
                    StepReport* report);
   void DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
-  /// The tangent is applied element by element instead of assembled (settings.rotated_factor_matrix_free).
+  /// The tangent is applied element by element and never assembled (TangentIsMatrixFree).
   bool MatrixFree() const;
+  /// Products with K_t and S element by element, S assembled or not (ProductsAreMatrixFree).
+  bool ProductsMatrixFree() const;
   /// y = K_t x, element by element or from S (then 0 on the fixed dofs, and x's fixed entries
   /// taken as 0).
   void TangentTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
-  /// y = S x (the system matrix SystemValuesFromTangent builds) from products, for MatrixFree().
+  /// y = S x (the system matrix SystemValuesFromTangent builds) from products, for ProductsMatrixFree().
   void SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   /// du . K_t du for the step's energy check: from S du, which kRotatedFactorPcg's solve leaves
   /// (S du = b - r), minus the mass and spring terms, when the mass is lumped; else one product.

@@ -38,9 +38,11 @@ void ValidateSettings(const FemSettings& s) {
   check(s.energy_floor_J >= 0.0, "energy_floor_J", s.energy_floor_J, ">= 0");
 }
 
-bool TangentIsMatrixFree(const FemSettings& s) {
+bool ProductsAreMatrixFree(const FemSettings& s) {
   return s.element_model == ElementModel::kCorotational && s.solver == LinearSolverKind::kRotatedFactorPcg &&
-         !s.rotated_factor_gauss_seidel && s.rotated_factor_matrix_free;
+         s.rotated_factor_matrix_free;
 }
+
+bool TangentIsMatrixFree(const FemSettings& s) { return ProductsAreMatrixFree(s) && !s.rotated_factor_gauss_seidel; }
 
 }  // namespace vesica::physics
