@@ -178,10 +178,17 @@ size_t TurnedGradientSize(const FemModel& m) {
   return m.element_batches.rest.size() / kElementBatchFields * kTurnedGradientFields;
 }
 
+// The vectorised corotational pass applies (with a rotation cache): the SIMD kernel runs, the
+// batches cover the mesh and, for a tangent, the node pairs exist.
+bool SimdPassApplies(const FemModel& m, ElementKernel kernel, bool wants_tangent) {
+  return m.settings.element_model == ElementModel::kCorotational && kernel != ElementKernel::kScalar &&
+         m.element_batches.num_tets == m.rest_mesh.num_tets() && (!wants_tangent || m.tangent_blocks.num_pairs() > 0);
+}
+
 double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eigen::VectorXd& u,
-                              Eigen::VectorXd* tangent, double tangent_scale, Eigen::VectorXd* force,
-                              std::vector<Eigen::Vector4d>& cache, std::vector<double>* turned_gradients,
-                              double* smallest_turn_cosine) {
+                              Eigen::VectorXd* tangent, const FloatTangentRows* float_tangent, double tangent_scale,
+                              Eigen::VectorXd* force, std::vector<Eigen::Vector4d>& cache,
+                              std::vector<double>* turned_gradients, double* smallest_turn_cosine) {
   if (static_cast<int>(cache.size()) != m.rest_mesh.num_tets())
     cache.assign(m.rest_mesh.num_tets(), Eigen::Vector4d(0, 0, 0, 1));
   force->setZero(u.size());
@@ -189,6 +196,11 @@ double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eig
   if (tangent) {
     tangent->resize(m.pattern.structure.nonZeros());  // the pass writes every value
     args.tangent = tangent->data();
+  } else if (float_tangent) {
+    args.tangent_rows = float_tangent->values;
+    args.tangent_row_offsets = float_tangent->pair_offsets->data();
+  }
+  if (tangent || float_tangent) {
     args.tangent_scale = tangent_scale;
     args.tangent_blocks = &m.tangent_blocks;
     thread_local std::vector<double> corner_vectors;
@@ -251,17 +263,48 @@ ElementKernel ResolveElementKernel(ElementKernel requested) {
   return static_cast<int>(requested) <= static_cast<int>(supported) ? requested : supported;
 }
 
+namespace {
+double LargestTurn(double smallest_turn_cosine) {
+  return smallest_turn_cosine > 0.0 ? 2.0 * std::acos(std::min(1.0, smallest_turn_cosine))
+                                    : std::numeric_limits<double>::infinity();
+}
+}  // namespace
+
+std::vector<int> FloatTangentRowOffsets(const TangentBlocks& blocks, const std::vector<int>& value_index_of_slots) {
+  std::vector<int> offsets(2 * static_cast<size_t>(blocks.num_pairs()));
+  for (int p = 0; p < blocks.num_pairs(); ++p) {
+    offsets[2 * p] = value_index_of_slots[blocks.slot_ab[p]];  // entry (3a, 3b): row 0 of block (b, a)
+    offsets[2 * p + 1] = value_index_of_slots[blocks.slot_ba[p]];
+  }
+  return offsets;
+}
+
+bool FloatTangentAvailable(const FemModel& model) {
+  return SimdPassApplies(model, ResolveElementKernel(model.settings.element_kernel), true);
+}
+
+double ComputeElasticForcesFloatTangent(const FemModel& model, const Eigen::VectorXd& u,
+                                        const FloatTangentRows& tangent, double tangent_scale,
+                                        Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
+                                        std::vector<double>* turned_gradients, double* largest_turn_rad) {
+  double smallest_turn_cosine = 1.0;
+  const double energy =
+      SimdCorotationalForces(model, ResolveElementKernel(model.settings.element_kernel), u, nullptr, &tangent,
+                             tangent_scale, internal_force_N, *rotation_cache, turned_gradients, &smallest_turn_cosine);
+  if (largest_turn_rad) *largest_turn_rad = LargestTurn(smallest_turn_cosine);
+  return energy;
+}
+
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
                             Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
                             std::vector<double>* turned_gradients, double* largest_turn_rad, double tangent_scale) {
   const ElementKernel kernel = ResolveElementKernel(model.settings.element_kernel);
   double smallest_turn_cosine = 1.0;  // |q_before . q_after| = cos(turn / 2)
   double energy = 0.0;
-  if (model.settings.element_model == ElementModel::kCorotational && rotation_cache &&
-      kernel != ElementKernel::kScalar && model.element_batches.num_tets == model.rest_mesh.num_tets() &&
-      (!tangent_values || model.tangent_blocks.num_pairs() > 0)) {  // writes every turned gradient: no clear
-    energy = SimdCorotationalForces(model, kernel, u, tangent_values, tangent_scale, internal_force_N, *rotation_cache,
-                                    turned_gradients, &smallest_turn_cosine);
+  if (rotation_cache && SimdPassApplies(model, kernel, tangent_values != nullptr)) {
+    // writes every turned gradient: no clear
+    energy = SimdCorotationalForces(model, kernel, u, tangent_values, nullptr, tangent_scale, internal_force_N,
+                                    *rotation_cache, turned_gradients, &smallest_turn_cosine);
   } else {
     if (turned_gradients) turned_gradients->clear();  // only the SIMD pass fills them
     if (model.settings.element_model == ElementModel::kLinear)
@@ -270,10 +313,7 @@ double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eig
       energy = CorotationalForces(model, u, tangent_values, internal_force_N, rotation_cache, &smallest_turn_cosine);
     if (tangent_values && tangent_scale != 1.0) *tangent_values *= tangent_scale;
   }
-  if (largest_turn_rad) {
-    *largest_turn_rad = smallest_turn_cosine > 0.0 ? 2.0 * std::acos(std::min(1.0, smallest_turn_cosine))
-                                                   : std::numeric_limits<double>::infinity();
-  }
+  if (largest_turn_rad) *largest_turn_rad = LargestTurn(smallest_turn_cosine);
   return energy;
 }
 

@@ -31,6 +31,29 @@ double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eig
                             std::vector<double>* turned_gradients = nullptr, double* largest_turn_rad = nullptr,
                             double tangent_scale = 1.0);
 
+/// The tangent rounded to float in FloatBlockRows' layout (pcg_solver.h): its values and, per node
+/// pair of model.tangent_blocks, the offsets FloatTangentRowOffsets gives.
+struct FloatTangentRows {
+  float* values = nullptr;
+  const std::vector<int>* pair_offsets = nullptr;
+};
+
+/// Where pair p's block (b, a) and block (a, b) start in float rows whose pattern value index
+/// `slot` lives at value_index_of_slots[slot] (FloatBlockRows::ValueIndexOfSlots).
+std::vector<int> FloatTangentRowOffsets(const TangentBlocks& blocks, const std::vector<int>& value_index_of_slots);
+
+/// True when ComputeElasticForces can write the tangent into float rows: a corotational body whose
+/// element pass runs vectorised (the scalar and linear passes write the pattern's doubles).
+bool FloatTangentAvailable(const FemModel& model);
+
+/// ComputeElasticForces writing tangent_scale K_t into float rows instead of the pattern's doubles
+/// (a preconditioner's copy of S, with no double copy made and rounded); every row value of the
+/// pattern is written. Only when FloatTangentAvailable(model); rotation_cache required.
+double ComputeElasticForcesFloatTangent(const FemModel& model, const Eigen::VectorXd& u,
+                                        const FloatTangentRows& tangent, double tangent_scale,
+                                        Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
+                                        std::vector<double>* turned_gradients, double* largest_turn_rad);
+
 /// y = K_t x for a corotational body without assembling K_t (the tangent ComputeElasticForces
 /// assembles, R K R^T per tet, at the rotations it left in rotation_cache), element by element
 /// with model.settings.element_kernel. Costs about one SpMV; saves the assembly when a solver only

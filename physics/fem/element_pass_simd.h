@@ -24,6 +24,11 @@ struct ElementPassArgs {
   /// kCornerVectorFields doubles a tet for the corner vectors the pairs are assembled from.
   const TangentBlocks* tangent_blocks = nullptr;
   double* corner_vectors = nullptr;
+  /// Instead of `tangent`: the tangent rounded to float into FloatBlockRows' values (pcg_solver.h),
+  /// pair p's K_ab column by column at tangent_row_offsets[2 p] (its block (b, a)) and row by row at
+  /// tangent_row_offsets[2 p + 1] (block (a, b)); with tangent_blocks and corner_vectors.
+  float* tangent_rows = nullptr;
+  const int* tangent_row_offsets = nullptr;
   /// Turned shape gradients R grad N_b (b = 1..3, x y z) per tet in ElementBatches' block layout
   /// (kTurnedGradientFields fields a block): the pass writes them when non-null, the product reads
   /// them when non-null (else it turns the gradients by rotation_cache).

@@ -39,6 +39,10 @@ struct FemBody::Workspace {
   BlockJacobiPreconditioner jacobi;
   FloatBlockRows float_rows;  // settings.rotated_factor_float_sweeps: the sweeps' copy of S
   bool float_sweeps = false;
+  // TangentInFloatRows: where the element pass writes each node pair's blocks in float_rows
+  // (FloatTangentRowOffsets), and where each dof's diagonal entry and each of the model's
+  // constrained slots live there. Built on first use.
+  std::vector<int> float_pair_offsets, float_diagonal_index, float_constrained_index;
   CholmodSolver cholmod;
   bool factor_matches_system = false;
   bool force_refactor = false;  // attachment changed: refactorise even between refreshes
@@ -231,6 +235,13 @@ double FemBody::TangentQuadraticForm(const Eigen::VectorXd& du) const {
   return (du.dot(w.solution_product) - diagonal) / stiffness_scale;
 }
 
+bool FemBody::TangentInFloatRows() const {
+  const FemModel& m = *model_;
+  const FemSettings& s = m.settings;
+  return ProductsMatrixFree() && s.rotated_factor_gauss_seidel && s.rotated_factor_float_sweeps &&
+         !m.uses_consistent_mass() && FloatBlockRows::available() && FloatTangentAvailable(m);
+}
+
 void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
   const FemModel& m = *model_;
   const FemSettings& s = m.settings;
@@ -241,6 +252,26 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
     w.elastic_energy = ComputeElasticForces(m, u, nullptr, &w.internal_force, &w.rotations, &w.turned_gradients, &turn);
     w.rotation_drift_rad += turn;
     w.system_assembled = true;
+    return;
+  }
+  if (TangentInFloatRows()) {  // S only for the sweeps: the pass writes its stiffness as floats
+    if (w.float_pair_offsets.empty()) {
+      w.float_rows.Reshape(m.pattern);
+      const std::vector<int> index = w.float_rows.ValueIndexOfSlots(m.pattern);
+      w.float_pair_offsets = FloatTangentRowOffsets(m.tangent_blocks, index);
+      w.float_diagonal_index.resize(m.num_dofs());
+      for (int i = 0; i < m.num_dofs(); ++i) w.float_diagonal_index[i] = index[m.pattern.diagonal_slot[i]];
+      w.float_constrained_index.clear();
+      for (int k : m.constrained_slots) w.float_constrained_index.push_back(index[k]);
+    }
+    double turn = 0.0;
+    w.elastic_energy = ComputeElasticForcesFloatTangent(m, u, {w.float_rows.values(), &w.float_pair_offsets},
+                                                        SystemMatrixScales(s).stiffness, &w.internal_force,
+                                                        &w.rotations, &w.turned_gradients, &turn);
+    w.rotation_drift_rad += turn;
+    w.system_assembled = true;
+    AddSystemTermsToFloatRows();
+    w.factor_matches_system = false;
     return;
   }
   // A linear body's K never changes: S is built once, then only f = K u is needed. The pass writes
@@ -263,25 +294,44 @@ void FemBody::SystemValuesFromTangent(const Eigen::VectorXd& tangent, Eigen::Vec
   AddSystemTerms(system);
 }
 
+namespace {
+// S's terms besides the stiffness: lumped mass (unless `consistent_mass_added`) and spring
+// increments like K du and D v+ (k + c_D d) on the diagonal, then the Dirichlet rows and columns
+// made the identity's. diagonal(i) is dof i's diagonal entry, constrained(j) the entry of the
+// model's j-th constrained slot, in whatever storage S has.
+template <class Diagonal, class Constrained>
+void AddDiagonalTermsAndDirichlet(const FemModel& m, const AttachmentSprings& springs, bool consistent_mass_added,
+                                  Diagonal diagonal, Constrained constrained) {
+  const FemSettings& s = m.settings;
+  const double mass_scale = SystemMatrixScales(s).mass;
+  if (!consistent_mass_added)
+    for (int i = 0; i < m.num_dofs(); ++i) diagonal(i) += mass_scale * m.lumped_mass_kg[i];
+  if (springs.any) {
+    const double c_damping = IntegratorCoefficients(s).damping;
+    const Eigen::VectorXd& k = springs.stiffness_N_per_m;
+    const Eigen::VectorXd& d = springs.damping_Ns_per_m;
+    for (int i = 0; i < m.num_dofs(); ++i) diagonal(i) += k[i] + c_damping * d[i];
+  }
+  for (size_t j = 0; j < m.constrained_slots.size(); ++j) constrained(j) = 0;
+  for (int i : m.fixed_dofs) diagonal(i) = 1;
+}
+}  // namespace
+
 void FemBody::AddSystemTerms(Eigen::VectorXd& system) const {
   const FemModel& m = *model_;
-  const FemSettings& s = m.settings;
-  const Workspace& w = *work_;
-  const SystemCoefficients c = IntegratorCoefficients(s);
-  const double mass_scale = SystemMatrixScales(s).mass;
-  if (m.uses_consistent_mass()) {
-    system += mass_scale * m.consistent_mass_values;
-  } else {
-    for (int i = 0; i < m.num_dofs(); ++i) system[m.pattern.diagonal_slot[i]] += mass_scale * m.lumped_mass_kg[i];
-  }
-  if (w.attachment.any) {
-    // Spring increments like K du and D v+: k + c_D d on the diagonal.
-    const Eigen::VectorXd& k = w.attachment.stiffness_N_per_m;
-    const Eigen::VectorXd& d = w.attachment.damping_Ns_per_m;
-    for (int i = 0; i < m.num_dofs(); ++i) system[m.pattern.diagonal_slot[i]] += k[i] + c.damping * d[i];
-  }
-  for (int k : m.constrained_slots) system[k] = 0.0;
-  for (int i : m.fixed_dofs) system[m.pattern.diagonal_slot[i]] = 1.0;
+  if (m.uses_consistent_mass()) system += SystemMatrixScales(m.settings).mass * m.consistent_mass_values;
+  AddDiagonalTermsAndDirichlet(
+      m, work_->attachment, m.uses_consistent_mass(),
+      [&](int i) -> double& { return system[m.pattern.diagonal_slot[i]]; },
+      [&](size_t j) -> double& { return system[m.constrained_slots[j]]; });
+}
+
+void FemBody::AddSystemTermsToFloatRows() {
+  Workspace& w = *work_;
+  float* values = w.float_rows.values();
+  AddDiagonalTermsAndDirichlet(
+      *model_, w.attachment, false, [&](int i) -> float& { return values[w.float_diagonal_index[i]]; },
+      [&](size_t j) -> float& { return values[w.float_constrained_index[j]]; });
 }
 
 void FemBody::UpdateNodeRotations() {
@@ -376,15 +426,29 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
       w.rotation_drift_rad = 0.0;
     }
     w.float_sweeps = s.rotated_factor_gauss_seidel && s.rotated_factor_float_sweeps && FloatBlockRows::available();
-    if (s.rotated_factor_gauss_seidel) w.jacobi.Compute(m.pattern, w.system_values);
-    if (w.float_sweeps) w.float_rows.Update(m.pattern, w.system_values);
+    const bool float_only = TangentInFloatRows();  // S exists as the float rows alone
+    if (s.rotated_factor_gauss_seidel) {
+      if (float_only)
+        w.jacobi.Compute(w.float_rows);
+      else
+        w.jacobi.Compute(m.pattern, w.system_values);
+    }
+    if (w.float_sweeps && !float_only) w.float_rows.Update(m.pattern, w.system_values);
     const int local_nodes = std::min(s.rotated_factor_local_nodes_max,
                                      static_cast<int>(std::lround(s.rotated_factor_local_share * m.num_nodes())));
     if (local_nodes > 0 && !MatrixFree()) {
-      // Not positive definite on those nodes: S is not either, and PCG reports it.
-      if (!w.local_correction.Compute(m.pattern, w.system_values,
-                                      LargestSpreadNodes(w.node_rotation_spread, local_nodes)))
-        w.local_correction.Clear();
+      // Not positive definite on those nodes: S is not either, and PCG reports it (Compute
+      // leaves the correction empty).
+      const std::vector<int> nodes = LargestSpreadNodes(w.node_rotation_spread, local_nodes);
+      if (float_only)
+        w.local_correction.Compute(
+            m.num_dofs(),
+            [&](int dof, std::vector<int>& columns, std::vector<double>& values) {
+              w.float_rows.AppendRow(dof, columns, values);
+            },
+            nodes);
+      else
+        w.local_correction.Compute(m.pattern, w.system_values, nodes);
     } else {
       w.local_correction.Clear();
     }

@@ -80,6 +80,12 @@ class FemBody {
   /// Adds mass M (+ springs) to values holding stiffness K_t, then makes the Dirichlet rows and
   /// columns the identity's.
   void AddSystemTerms(Eigen::VectorXd& system) const;
+  /// The same on the float rows the element pass wrote S's stiffness into (TangentInFloatRows).
+  void AddSystemTermsToFloatRows();
+  /// S is kept only as the Gauss-Seidel sweeps' float rows, written by the element pass (the
+  /// shipped rotated-factor solver: matrix-free products, lumped mass, a vectorised pass); no
+  /// double S is assembled.
+  bool TangentInFloatRows() const;
   void UpdateNodeRotations();
   bool SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, double tolerance, int max_iterations,
                    StepReport* report);

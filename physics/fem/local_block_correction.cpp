@@ -4,12 +4,10 @@
 
 namespace vesica::physics {
 
-bool LocalBlockCorrection::Compute(const SparsePattern& pattern, const Eigen::VectorXd& values,
-                                   const std::vector<int>& nodes) {
+bool LocalBlockCorrection::Compute(int num_dofs, const SymmetricRowSource& rows, const std::vector<int>& nodes) {
   Clear();
   if (nodes.empty()) return true;
-  const Eigen::SparseMatrix<double>& structure = pattern.structure;
-  std::vector<int> local_index(static_cast<size_t>(structure.cols()), -1);
+  std::vector<int> local_index(static_cast<size_t>(num_dofs), -1);
   std::vector<int> dofs;
   dofs.reserve(3 * nodes.size());
   for (int n : nodes)
@@ -18,24 +16,45 @@ bool LocalBlockCorrection::Compute(const SparsePattern& pattern, const Eigen::Ve
       dofs.push_back(3 * n + d);
     }
   const int size = static_cast<int>(dofs.size());
+  row_begin_.assign(1, 0);
+  for (int a = 0; a < size; ++a) {
+    rows(dofs[a], row_column_, row_value_);
+    row_begin_.push_back(static_cast<int>(row_column_.size()));
+  }
   Eigen::MatrixXd block = Eigen::MatrixXd::Zero(size, size);
-  const int* begin = structure.outerIndexPtr();
-  const int* row = structure.innerIndexPtr();
   for (int a = 0; a < size; ++a)
-    for (int k = begin[dofs[a]]; k < begin[dofs[a] + 1]; ++k)
-      if (const int b = local_index[row[k]]; b >= 0) block(b, a) = values[k];
+    for (int k = row_begin_[a]; k < row_begin_[a + 1]; ++k)
+      if (const int b = local_index[row_column_[k]]; b >= 0) block(a, b) = row_value_[k];
   factor_.compute(block);
-  if (factor_.info() != Eigen::Success) return false;
-  pattern_ = &pattern;
-  values_ = &values;
+  if (factor_.info() != Eigen::Success) {
+    Clear();
+    return false;
+  }
   dofs_ = std::move(dofs);
   return true;
 }
 
+bool LocalBlockCorrection::Compute(const SparsePattern& pattern, const Eigen::VectorXd& values,
+                                   const std::vector<int>& nodes) {
+  const Eigen::SparseMatrix<double>& structure = pattern.structure;
+  const int* begin = structure.outerIndexPtr();
+  const int* row = structure.innerIndexPtr();
+  return Compute(
+      static_cast<int>(structure.cols()),
+      [&](int dof, std::vector<int>& columns, std::vector<double>& row_values) {
+        for (int k = begin[dof]; k < begin[dof + 1]; ++k) {  // column dof of the symmetric S is its row
+          columns.push_back(row[k]);
+          row_values.push_back(values[k]);
+        }
+      },
+      nodes);
+}
+
 void LocalBlockCorrection::Clear() {
   dofs_.clear();
-  pattern_ = nullptr;
-  values_ = nullptr;
+  row_begin_.clear();
+  row_column_.clear();
+  row_value_.clear();
 }
 
 void LocalBlockCorrection::Apply(Eigen::VectorXd& r, Eigen::VectorXd& z) const {
@@ -44,14 +63,10 @@ void LocalBlockCorrection::Apply(Eigen::VectorXd& r, Eigen::VectorXd& z) const {
   local_.resize(size);
   for (int a = 0; a < size; ++a) local_[a] = r[dofs_[a]];
   factor_.solveInPlace(local_);
-  const int* begin = pattern_->structure.outerIndexPtr();
-  const int* row = pattern_->structure.innerIndexPtr();
-  const double* value = values_->data();
   for (int a = 0; a < size; ++a) {
-    const int j = dofs_[a];
     const double delta = local_[a];
-    z[j] += delta;
-    for (int k = begin[j]; k < begin[j + 1]; ++k) r[row[k]] -= value[k] * delta;
+    z[dofs_[a]] += delta;
+    for (int k = row_begin_[a]; k < row_begin_[a + 1]; ++k) r[row_column_[k]] -= row_value_[k] * delta;
   }
 }
 
@@ -59,14 +74,10 @@ void LocalBlockCorrection::ApplyAfter(const Eigen::VectorXd& r, const Eigen::Vec
   if (empty()) return;
   const int size = static_cast<int>(dofs_.size());
   local_.resize(size);
-  const int* begin = pattern_->structure.outerIndexPtr();
-  const int* row = pattern_->structure.innerIndexPtr();
-  const double* value = values_->data();
   for (int a = 0; a < size; ++a) {
-    const int j = dofs_[a];
-    double s_c = 0.0;  // (S c)_j: column j of the symmetric S is its row j
-    for (int k = begin[j]; k < begin[j + 1]; ++k) s_c += value[k] * c[row[k]];
-    local_[a] = r[j] - s_c;
+    double s_c = 0.0;  // (S c)_j, j = dofs_[a]
+    for (int k = row_begin_[a]; k < row_begin_[a + 1]; ++k) s_c += row_value_[k] * c[row_column_[k]];
+    local_[a] = r[dofs_[a]] - s_c;
   }
   factor_.solveInPlace(local_);
   for (int a = 0; a < size; ++a) z[dofs_[a]] += local_[a];

@@ -9,17 +9,24 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "physics/fem/sparse_pattern.h"
 
 namespace vesica::physics {
 
+/// Appends row `dof` of a symmetric matrix to `columns` and `values` (any order, no repeats).
+using SymmetricRowSource = std::function<void(int dof, std::vector<int>& columns, std::vector<double>& values)>;
+
 class LocalBlockCorrection {
  public:
-  /// Takes S_PP, the rows and columns of `values` (on `pattern`) of the given nodes' dofs, and
-  /// factorises it. Returns false, and leaves the correction empty, when S_PP is not positive
-  /// definite. An empty node list leaves it empty (Apply does nothing).
+  /// Copies the rows of the given nodes' dofs (S(P, :), which the corrections need; by symmetry
+  /// also the columns), factorises S_PP and keeps both: nothing refers back to S afterwards.
+  /// Returns false, and leaves the correction empty, when S_PP is not positive definite. An empty
+  /// node list leaves it empty (Apply does nothing). `num_dofs`: S's size.
+  bool Compute(int num_dofs, const SymmetricRowSource& rows, const std::vector<int>& nodes);
+  /// The same from `values` on `pattern` (rows read as the symmetric columns).
   bool Compute(const SparsePattern& pattern, const Eigen::VectorXd& values, const std::vector<int>& nodes);
   void Clear();
   bool empty() const { return dofs_.empty(); }
@@ -33,9 +40,10 @@ class LocalBlockCorrection {
   void ApplyAfter(const Eigen::VectorXd& r, const Eigen::VectorXd& c, Eigen::VectorXd& z) const;
 
  private:
-  const SparsePattern* pattern_ = nullptr;
-  const Eigen::VectorXd* values_ = nullptr;
   std::vector<int> dofs_;  // P's dofs, node by node
+  // Row a of S(P, :) (dof dofs_[a]): entries [row_begin_[a], row_begin_[a + 1]) of row_column_ / row_value_.
+  std::vector<int> row_begin_, row_column_;
+  std::vector<double> row_value_;
   Eigen::LLT<Eigen::MatrixXd> factor_;
   mutable Eigen::VectorXd local_;  // scratch: r_P, then the correction
 };

@@ -23,6 +23,17 @@ void BlockJacobiPreconditioner::Compute(const SparsePattern& p, const Eigen::Vec
   }
 }
 
+void BlockJacobiPreconditioner::Compute(const FloatBlockRows& rows) {
+  inverse_blocks_.resize(rows.nodes_);
+  for (int i = 0; i < rows.nodes_; ++i) {
+    const float* v = rows.values_.data() + 9 * static_cast<size_t>(rows.diagonal_block_[i]);
+    Eigen::Matrix3d block;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) block(r, c) = v[3 * r + c];
+    inverse_blocks_[i] = block.inverse();
+  }
+}
+
 void BlockJacobiPreconditioner::Apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
   z.resize(r.size());
   for (size_t i = 0; i < inverse_blocks_.size(); ++i) z.segment<3>(3 * i) = inverse_blocks_[i] * r.segment<3>(3 * i);
@@ -140,7 +151,7 @@ void UpperBlocksTimes(const SparsePattern& p, const Eigen::VectorXd& values, con
 
 bool FloatBlockRows::available() { return BlockRowKernelsUseAvx2(); }
 
-void FloatBlockRows::Update(const SparsePattern& p, const Eigen::VectorXd& values) {
+void FloatBlockRows::Reshape(const SparsePattern& p) {
   const int nodes = static_cast<int>(p.structure.cols()) / 3;
   const int* outer = p.structure.outerIndexPtr();
   const int* inner = p.structure.innerIndexPtr();
@@ -164,6 +175,27 @@ void FloatBlockRows::Update(const SparsePattern& p, const Eigen::VectorXd& value
     }
     values_.assign(9 * column_.size() + 4, 0.0f);
   }
+}
+
+std::vector<int> FloatBlockRows::ValueIndexOfSlots(const SparsePattern& p) const {
+  std::vector<int> index(static_cast<size_t>(p.structure.nonZeros()), -1);
+  for (size_t k = 0; k < column_.size(); ++k)
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) index[source_[k] + r * source_stride_[k] + c] = static_cast<int>(9 * k) + 3 * r + c;
+  return index;
+}
+
+void FloatBlockRows::AppendRow(int dof, std::vector<int>& columns, std::vector<double>& values) const {
+  const int i = dof / 3, r = dof % 3;
+  for (int k = row_begin_[i]; k < row_begin_[i + 1]; ++k)
+    for (int c = 0; c < 3; ++c) {
+      columns.push_back(3 * column_[k] + c);
+      values.push_back(values_[9 * k + 3 * r + c]);
+    }
+}
+
+void FloatBlockRows::Update(const SparsePattern& p, const Eigen::VectorXd& values) {
+  Reshape(p);
   // Row r of block (i, j) is A(3i + r, 3j..3j+2) = A(3j..3j+2, 3i + r): column 3i + r's triplet.
   const double* v = values.data();
   float* out = values_.data();

@@ -27,10 +27,14 @@ inline constexpr int kPcgSpectrumIterations = 64;
 /// z = P^-1 r.
 using Preconditioner = std::function<void(const Eigen::VectorXd& r, Eigen::VectorXd& z)>;
 
+class FloatBlockRows;
+
 /// Inverse 3x3 diagonal blocks of a pattern matrix, applied as a preconditioner.
 class BlockJacobiPreconditioner {
  public:
   void Compute(const SparsePattern& pattern, const Eigen::VectorXd& values);
+  /// From the float rows' diagonal blocks (inverted in double).
+  void Compute(const FloatBlockRows& rows);
   void Apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
   const std::vector<Eigen::Matrix3d>& inverse_blocks() const { return inverse_blocks_; }
 
@@ -69,6 +73,15 @@ class FloatBlockRows {
  public:
   /// Builds the block structure (first use or another pattern) and rounds the values.
   void Update(const SparsePattern& pattern, const Eigen::VectorXd& values);
+  /// Builds the block structure for `pattern` unless it has it already; values keep theirs, zero
+  /// when new. For writers of values() that do not go through Update.
+  void Reshape(const SparsePattern& pattern);
+  /// Per pattern value index (slot), where that entry lives in values(): the map a writer of
+  /// the rows needs (entry (row 3j + c, column 3i + r) is 9 k + 3 r + c of block k = (i, j)).
+  std::vector<int> ValueIndexOfSlots(const SparsePattern& pattern) const;
+  float* values() { return values_.data(); }
+  /// Appends row `dof` (its column indices and values, as doubles), LocalBlockCorrection's row source.
+  void AppendRow(int dof, std::vector<int>& columns, std::vector<double>& values) const;
   static bool available();
   int nodes() const { return nodes_; }
 
@@ -77,6 +90,7 @@ class FloatBlockRows {
                                     Eigen::VectorXd&, bool);
   friend void ForwardSweepFromZeroAndUpperTimes(const FloatBlockRows&, const std::vector<Eigen::Matrix3d>&,
                                                 const Eigen::VectorXd&, Eigen::VectorXd&, Eigen::VectorXd&);
+  friend class BlockJacobiPreconditioner;
   int nodes_ = 0;
   long nonzeros_ = -1;  // of the pattern the structure was built for
   std::vector<int> row_begin_, diagonal_block_, column_;

@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 
 #include "physics/fem/elastic_forces.h"
+#include "physics/fem/pcg_solver.h"
 #include "tests/fem/fem_test_support.h"
 
 namespace vesica::physics {
@@ -77,6 +78,47 @@ TEST(LocalBlockCorrectionTest, OnSomeNodesItZeroesTheirResidualAndKeepsItZsResid
   local.ApplyAfter(r, c, z_after);
   local.Apply(r_apply, z_apply);
   EXPECT_LT((z_after - z_apply).norm(), 1e-12 * z_apply.norm());
+}
+
+// From rows given one by one (here the float rows of S, as the shipped solver keeps it) the
+// correction is the one of the same values on the pattern, and it keeps no reference to them.
+TEST(LocalBlockCorrectionTest, FromARowSourceItIsTheCorrectionOfThoseValues) {
+  if (!FloatBlockRows::available()) GTEST_SKIP() << "no AVX2 + FMA (or VESICA_FEM_ELEMENT_KERNEL=scalar)";
+  const SmallSystem system = MakeSystem();
+  const FemModel& m = *system.model;
+  const Eigen::VectorXd rounded = system.values.cast<float>().cast<double>();
+  const std::vector<int> some = {7, 3, 12, 0};
+  LocalBlockCorrection from_pattern, from_rows;
+  ASSERT_TRUE(from_pattern.Compute(m.pattern, rounded, some));
+  {
+    FloatBlockRows rows;
+    rows.Update(m.pattern, system.values);
+    ASSERT_TRUE(from_rows.Compute(
+        m.num_dofs(),
+        [&](int dof, std::vector<int>& columns, std::vector<double>& values) { rows.AppendRow(dof, columns, values); },
+        some));
+  }  // the rows are gone
+  EXPECT_EQ(from_rows.dofs(), from_pattern.dofs());
+  const int n = m.num_dofs();
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, -3.0);
+  Eigen::VectorXd z_pattern = Eigen::VectorXd::LinSpaced(n, 0.0, 0.01), z_rows = z_pattern;
+  Eigen::VectorXd r_pattern = b - system.dense * z_pattern, r_rows = r_pattern;
+  from_pattern.Apply(r_pattern, z_pattern);
+  from_rows.Apply(r_rows, z_rows);
+  EXPECT_LT((z_rows - z_pattern).norm(), 1e-14 * z_pattern.norm());
+  EXPECT_LT((r_rows - r_pattern).norm(), 1e-14 * r_pattern.norm());
+  const Eigen::VectorXd c = Eigen::VectorXd::LinSpaced(n, -0.02, 0.03);
+  from_pattern.ApplyAfter(r_pattern, c, z_pattern);
+  from_rows.ApplyAfter(r_rows, c, z_rows);
+  EXPECT_LT((z_rows - z_pattern).norm(), 1e-14 * z_pattern.norm());
+  // And not the correction of the unrounded values: the rows' values were used.
+  LocalBlockCorrection exact;
+  ASSERT_TRUE(exact.Compute(m.pattern, system.values, some));
+  Eigen::VectorXd z_exact = Eigen::VectorXd::LinSpaced(n, 0.0, 0.01), r_exact = b - system.dense * z_exact;
+  Eigen::VectorXd z_first = Eigen::VectorXd::LinSpaced(n, 0.0, 0.01), r_first = r_exact;
+  exact.Apply(r_exact, z_exact);
+  from_rows.Apply(r_first, z_first);
+  EXPECT_GT((z_first - z_exact).norm(), 1e-12 * z_exact.norm());
 }
 
 TEST(LocalBlockCorrectionTest, RefusesABlockThatIsNotPositiveDefinite) {

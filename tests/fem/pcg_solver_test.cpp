@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 
 #include "physics/fem/block_rows_simd.h"
 #include "physics/fem/elastic_forces.h"
@@ -154,6 +155,51 @@ TEST(PcgSolverTest, FloatBlockRowSweepsAreTheTriangularSolvesOfTheRoundedMatrix)
   Eigen::VectorXd exact = Eigen::VectorXd::Zero(b.size());
   BlockGaussSeidelSweep(sys.model.pattern, sys.values, jacobi.inverse_blocks(), b, exact, true);
   EXPECT_GT((sweep - exact).norm(), 1e-14 * exact.norm());
+}
+
+// The float rows' map of the pattern's values is one to one onto the rows' values, writing through
+// it is Update, rows read back are the matrix's rows rounded, and block Jacobi from the float rows
+// is the double one's to float rounding.
+TEST(PcgSolverTest, FloatBlockRowsMapEveryValueAndReadBackRowsAndDiagonalInverses) {
+  const SmallSystem sys = MakeSystem();
+  const SparsePattern& p = sys.model.pattern;
+  FloatBlockRows updated, written;
+  updated.Update(p, sys.values);
+  written.Reshape(p);
+  const std::vector<int> index = written.ValueIndexOfSlots(p);
+  ASSERT_EQ(static_cast<Eigen::Index>(index.size()), p.structure.nonZeros());
+  std::vector<int> hits(index.size(), 0);
+  for (int i : index) {
+    ASSERT_GE(i, 0);
+    ASSERT_LT(i, static_cast<int>(index.size()));
+    ++hits[i];
+  }
+  EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), static_cast<long>(hits.size()));
+  for (size_t k = 0; k < index.size(); ++k) written.values()[index[k]] = static_cast<float>(sys.values[k]);
+  for (size_t k = 0; k < index.size(); ++k) ASSERT_EQ(written.values()[k], updated.values()[k]) << k;
+
+  for (int dof = 0; dof < sys.model.num_dofs(); ++dof) {
+    std::vector<int> columns;
+    std::vector<double> values;
+    written.AppendRow(dof, columns, values);
+    Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(sys.model.num_dofs());
+    for (size_t k = 0; k < columns.size(); ++k) row[columns[k]] += values[k];
+    Eigen::RowVectorXd rounded = sys.dense.row(dof).cast<float>().cast<double>();
+    EXPECT_EQ((row - rounded).cwiseAbs().maxCoeff(), 0.0) << dof;
+    EXPECT_EQ(static_cast<int>(columns.size()),
+              p.structure.outerIndexPtr()[dof + 1] - p.structure.outerIndexPtr()[dof]);
+  }
+
+  BlockJacobiPreconditioner from_double, from_float;
+  from_double.Compute(p, sys.values);
+  from_float.Compute(written);
+  double worst = 0.0;
+  for (int n = 0; n < sys.model.num_nodes(); ++n) {
+    const Eigen::Matrix3d& a = from_double.inverse_blocks()[n];
+    worst = std::max(worst, (from_float.inverse_blocks()[n] - a).norm() / a.norm());
+  }
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_GT(worst, 0.0);  // the rounding is seen
 }
 
 // PCG with block Jacobi on the small system from zero, right-hand side TestVector.
