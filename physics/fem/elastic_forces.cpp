@@ -271,8 +271,9 @@ double LargestTurn(double smallest_turn_cosine) {
 }  // namespace
 
 std::vector<int> FloatTangentRowOffsets(const TangentBlocks& blocks, const std::vector<int>& value_index_of_slots) {
-  std::vector<int> offsets(2 * static_cast<size_t>(blocks.num_pairs()));
-  for (int p = 0; p < blocks.num_pairs(); ++p) {
+  const size_t pairs = blocks.slot_ab.size();
+  std::vector<int> offsets(2 * pairs);
+  for (size_t p = 0; p < pairs; ++p) {
     offsets[2 * p] = value_index_of_slots[blocks.slot_ab[p]];  // entry (3a, 3b): row 0 of block (b, a)
     offsets[2 * p + 1] = value_index_of_slots[blocks.slot_ba[p]];
   }
