@@ -9,6 +9,7 @@
 
 #include "physics/fem/cholmod_solver.h"
 #include "physics/fem/elastic_forces.h"
+#include "physics/fem/pcg_solver.h"
 #include "physics/mesh/primitives.h"
 
 namespace vesica::physics {
@@ -149,6 +150,39 @@ void BM_FemCholmodSolveHalf(benchmark::State& state, Eigen::Vector3i cells) {
   state.counters["half"] = cholesky.half_storage() ? 1.0 : 0.0;
 }
 
+// One backward block Gauss-Seidel sweep on the float rows of M/h^2 + K (the shipped
+// preconditioner's sweeps), with its data in cache or, `evict`, after streaming 8 MB through the
+// caches as the half solve between the two sweeps of a preconditioner application does (the
+// eviction is not timed).
+void BM_FemGaussSeidelSweep(benchmark::State& state, Eigen::Vector3i cells, bool evict) {
+  if (!FloatBlockRows::available()) {
+    state.SkipWithError("no AVX2 + FMA");
+    return;
+  }
+  const FemModel m = BoxModel(cells);
+  Eigen::VectorXd s = m.linear_stiffness_values;
+  for (int i = 0; i < m.num_dofs(); ++i) s[m.pattern.diagonal_slot[i]] += 1e4 * m.lumped_mass_kg[i];
+  FloatBlockRows rows;
+  rows.Update(m.pattern, s);
+  BlockJacobiPreconditioner jacobi;
+  jacobi.Compute(rows);
+  const Eigen::VectorXd b = Deformation(m);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+  std::vector<double> other(evict ? 1 << 20 : 0, 1.0);
+  for (auto _ : state) {
+    if (evict) {
+      state.PauseTiming();
+      double sum = 0.0;
+      for (double& v : other) sum += (v += 1e-9);
+      benchmark::DoNotOptimize(sum);
+      state.ResumeTiming();
+    }
+    BlockGaussSeidelSweep(rows, jacobi.inverse_blocks(), b, x, false);
+    benchmark::DoNotOptimize(x.data());
+  }
+  state.counters["blocks"] = static_cast<double>(m.pattern.structure.nonZeros() / 9);
+}
+
 const bool kRegistered = [] {
   // The grids fem_step_bench.cpp uses for Table 3's end points: 310 -> 300 nodes, 2,865 -> 2,900.
   const std::pair<Eigen::Vector3i, const char*> sizes[] = {{{11, 4, 4}, "310"}, {{28, 9, 9}, "2865"}};
@@ -177,6 +211,12 @@ const bool kRegistered = [] {
     benchmark::RegisterBenchmark((std::string("BM_FemSpmv/") + name).c_str(), BM_FemSpmv, cells)
         ->Unit(benchmark::kMillisecond)
         ->MinTime(0.2);
+    for (bool evict : {false, true})
+      benchmark::RegisterBenchmark(
+          (std::string("BM_FemGaussSeidelSweep/") + name + (evict ? "/after_eviction" : "/in_cache")).c_str(),
+          BM_FemGaussSeidelSweep, cells, evict)
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(0.2);
     benchmark::RegisterBenchmark((std::string("BM_FemTangentTimes/") + name).c_str(), BM_FemTangentTimes, cells)
         ->Unit(benchmark::kMillisecond)
         ->MinTime(0.2);
