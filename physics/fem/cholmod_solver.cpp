@@ -286,6 +286,12 @@ bool CholmodSolver::factorized() const { return impl_->factorized; }
 
 bool CholmodSolver::half_storage() const { return impl_->has_single && impl_->single.half; }
 
+std::size_t CholmodSolver::low_precision_bytes() const {
+  const SingleFactor& f = impl_->single;
+  if (!impl_->has_single) return 0;
+  return f.half ? f.half_values.size() * sizeof(std::uint16_t) : f.values.size() * sizeof(float);
+}
+
 void CholmodSolver::Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   const std::lock_guard lock(impl_->cholmod_mutex);
   x = impl_->cholesky.solve(b);

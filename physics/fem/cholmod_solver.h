@@ -27,6 +27,9 @@ class CholmodSolver {
   bool factorized() const;
   /// The low-precision copy is the half one (half_storage was asked for and the CPU has F16C).
   bool half_storage() const;
+  /// Bytes of factor values a low-precision solve reads each way (0 without the copy): what it
+  /// streams through the caches twice a solve.
+  std::size_t low_precision_bytes() const;
   /// x = A^-1 b with the last successful factorisation. The solves may be called from several
   /// threads at once (not during Factorize).
   void Solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const;

@@ -619,8 +619,9 @@ TEST(FemBodyTest, MatrixFreeRotatedFactorStepsMatchTheAssembledOnes) {
       // keeps S only as the sweeps' float rows, written by the element pass): the same iterations,
       // one more or fewer over 30 steps at most. (Without sweeps it has no local solves, S being
       // nowhere.)
-      if (gauss_seidel)
+      if (gauss_seidel) {
         EXPECT_LE(std::abs(iterations[1] - iterations[0]), 1) << iterations[0] << " assembled, " << iterations[1];
+      }
     }
   }
 }
