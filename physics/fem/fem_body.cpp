@@ -21,7 +21,8 @@ namespace vesica::physics {
 
 struct FemBody::Workspace {
   // S (SystemValuesFromTangent) at the state it was assembled at, Dirichlet rows and columns the
-  // identity's; no copy of K_t is kept (TangentTimes recovers K_t x from S).
+  // identity's; no copy of K_t is kept (TangentTimes recovers K_t x from S). Not written when
+  // TangentInFloatRows (S is then float_rows alone).
   Eigen::VectorXd system_values;
   Eigen::VectorXd internal_force;
   double elastic_energy = 0.0;
