@@ -90,7 +90,7 @@ void BM_FemTangentTimes(benchmark::State& state, Eigen::Vector3i cells) {
   const Eigen::VectorXd u = Deformation(m);
   Eigen::VectorXd force, y;
   std::vector<Eigen::Vector4d> cache;
-  std::vector<double> turned;  // as FemBody's matrix-free step has them
+  HugePageVector<double> turned;  // as FemBody's matrix-free step has them
   ComputeElasticForces(m, u, nullptr, &force, &cache, &turned);
   for (auto _ : state) {
     CorotationalTangentTimes(m, cache, u, y, &turned);

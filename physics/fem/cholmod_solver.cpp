@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "physics/fem/half_factor.h"
+#include "physics/fem/huge_page_allocator.h"
 
 namespace vesica::physics {
 
@@ -105,8 +106,8 @@ double HalfScale(double largest) { return largest > 0.0 ? std::exp2(std::floor(s
 struct SingleFactor {
   std::vector<int> super, pi, px, rows, perm;
   std::vector<int> position;  // inverse of perm: entry j of b is y[position[j]]
-  std::vector<float> values;
-  std::vector<std::uint16_t> half_values;
+  HugePageVector<float> values;
+  HugePageVector<std::uint16_t> half_values;
   std::vector<std::size_t> half_px;  // supernode starts in half_values
   std::vector<float> unscales;       // HalfFactorView::unscales
   bool half = false;

@@ -188,7 +188,7 @@ bool SimdPassApplies(const FemModel& m, ElementKernel kernel, bool wants_tangent
 double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eigen::VectorXd& u,
                               Eigen::VectorXd* tangent, const FloatTangentRows* float_tangent, double tangent_scale,
                               Eigen::VectorXd* force, std::vector<Eigen::Vector4d>& cache,
-                              std::vector<double>* turned_gradients, double* smallest_turn_cosine) {
+                              HugePageVector<double>* turned_gradients, double* smallest_turn_cosine) {
   if (static_cast<int>(cache.size()) != m.rest_mesh.num_tets())
     cache.assign(m.rest_mesh.num_tets(), Eigen::Vector4d(0, 0, 0, 1));
   force->setZero(u.size());
@@ -227,7 +227,7 @@ void ScalarElementRotation(const double* f, double* q, double* r) {
 }
 
 void CorotationalTangentTimes(const FemModel& m, const std::vector<Eigen::Vector4d>& cache, const Eigen::VectorXd& x,
-                              Eigen::VectorXd& y, const std::vector<double>* turned_gradients) {
+                              Eigen::VectorXd& y, const HugePageVector<double>* turned_gradients) {
   y.setZero(x.size());
   const ElementKernel kernel = ResolveElementKernel(m.settings.element_kernel);
   if (kernel != ElementKernel::kScalar && m.element_batches.num_tets == m.rest_mesh.num_tets()) {
@@ -287,7 +287,7 @@ bool FloatTangentAvailable(const FemModel& model) {
 double ComputeElasticForcesFloatTangent(const FemModel& model, const Eigen::VectorXd& u,
                                         const FloatTangentRows& tangent, double tangent_scale,
                                         Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
-                                        std::vector<double>* turned_gradients, double* largest_turn_rad) {
+                                        HugePageVector<double>* turned_gradients, double* largest_turn_rad) {
   double smallest_turn_cosine = 1.0;
   const double energy =
       SimdCorotationalForces(model, ResolveElementKernel(model.settings.element_kernel), u, nullptr, &tangent,
@@ -298,7 +298,7 @@ double ComputeElasticForcesFloatTangent(const FemModel& model, const Eigen::Vect
 
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
                             Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
-                            std::vector<double>* turned_gradients, double* largest_turn_rad, double tangent_scale) {
+                            HugePageVector<double>* turned_gradients, double* largest_turn_rad, double tangent_scale) {
   const ElementKernel kernel = ResolveElementKernel(model.settings.element_kernel);
   double smallest_turn_cosine = 1.0;  // |q_before . q_after| = cos(turn / 2)
   double energy = 0.0;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "physics/fem/fem_model.h"
+#include "physics/fem/huge_page_allocator.h"
 
 namespace vesica::physics {
 
@@ -28,7 +29,7 @@ ElementKernel ResolveElementKernel(ElementKernel requested);
 /// write of each value instead of another pass over them).
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
                             Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache = nullptr,
-                            std::vector<double>* turned_gradients = nullptr, double* largest_turn_rad = nullptr,
+                            HugePageVector<double>* turned_gradients = nullptr, double* largest_turn_rad = nullptr,
                             double tangent_scale = 1.0);
 
 /// The tangent rounded to float in FloatBlockRows' layout (pcg_solver.h): its values and, per node
@@ -52,7 +53,7 @@ bool FloatTangentAvailable(const FemModel& model);
 double ComputeElasticForcesFloatTangent(const FemModel& model, const Eigen::VectorXd& u,
                                         const FloatTangentRows& tangent, double tangent_scale,
                                         Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
-                                        std::vector<double>* turned_gradients, double* largest_turn_rad);
+                                        HugePageVector<double>* turned_gradients, double* largest_turn_rad);
 
 /// y = K_t x for a corotational body without assembling K_t (the tangent ComputeElasticForces
 /// assembles, R K R^T per tet, at the rotations it left in rotation_cache), element by element
@@ -61,7 +62,7 @@ double ComputeElasticForcesFloatTangent(const FemModel& model, const Eigen::Vect
 /// spares the SIMD product turning every tet's gradients; ignored when empty.
 void CorotationalTangentTimes(const FemModel& model, const std::vector<Eigen::Vector4d>& rotation_cache,
                               const Eigen::VectorXd& x, Eigen::VectorXd& y,
-                              const std::vector<double>* turned_gradients = nullptr);
+                              const HugePageVector<double>* turned_gradients = nullptr);
 
 /// y = A x for a symmetric matrix stored in the pattern (read row-wise, gather form).
 void SymmetricPatternMultiply(const SparsePattern& pattern, const Eigen::VectorXd& values, const Eigen::VectorXd& x,

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "physics/fem/huge_page_allocator.h"
 #include "physics/fem/tet_element.h"
 #include "physics/mesh/tetrahedral_mesh.h"
 
@@ -22,10 +23,10 @@ inline constexpr int kTurnedGradientFields = 9;
 struct ElementBatches {
   int num_tets = 0;
   /// [block][field][lane]; lanes past num_tets in the last block are zero (volume 0).
-  std::vector<double> rest;
+  HugePageVector<double> rest;
   /// [block][corner][lane]: 3 x node index of each corner (its x dof; gather index into u);
   /// padding lanes repeat node 0 of tet 0.
-  std::vector<int> dofs;
+  HugePageVector<int> dofs;
 
   /// Rest volume of tet t (m^3), from the compact blocks (TetElement is 176 bytes a tet: reading
   /// one double of each misses the cache for every tet).

@@ -36,7 +36,7 @@ struct FemBody::Workspace {
   Eigen::VectorXd solution_product;      // S du after a kRotatedFactorPcg solve (b - r)
   bool solution_product_valid = false;
   std::vector<Eigen::Vector4d> rotations;  // corotational warm start, per tet
-  std::vector<double> turned_gradients;    // R grad N per tet from the last matrix-free pass
+  HugePageVector<double> turned_gradients;  // R grad N per tet from the last matrix-free pass
   BlockJacobiPreconditioner jacobi;
   FloatBlockRows float_rows;  // settings.rotated_factor_float_sweeps: the sweeps' copy of S
   bool float_sweeps = false;

@@ -209,8 +209,8 @@ void FloatBlockRows::Update(const SparsePattern& p, const Eigen::VectorXd& value
 
 namespace {
 FloatBlockRowsView RowsOf(const FloatBlockRows& rows, const std::vector<int>& row_begin,
-                          const std::vector<int>& diagonal_block, const std::vector<int>& column,
-                          const std::vector<float>& values) {
+                          const std::vector<int>& diagonal_block, const HugePageVector<int>& column,
+                          const HugePageVector<float>& values) {
   FloatBlockRowsView view;
   view.nodes = rows.nodes();
   view.row_begin = row_begin.data();

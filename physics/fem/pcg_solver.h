@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "physics/fem/cg_spectrum_estimate.h"
+#include "physics/fem/huge_page_allocator.h"
 #include "physics/fem/sparse_pattern.h"
 
 namespace vesica::physics {
@@ -93,10 +94,11 @@ class FloatBlockRows {
   friend class BlockJacobiPreconditioner;
   int nodes_ = 0;
   long nonzeros_ = -1;  // of the pattern the structure was built for
-  std::vector<int> row_begin_, diagonal_block_, column_;
+  std::vector<int> row_begin_, diagonal_block_;
+  HugePageVector<int> column_;
   std::vector<int> source_;         // per block (i, j): value index of entry (3j, 3i) in the pattern
   std::vector<int> source_stride_;  // per block: the column stride of node i
-  std::vector<float> values_;
+  HugePageVector<float> values_;
 };
 
 /// BlockGaussSeidelSweep and ForwardSweepFromZeroAndUpperTimes on the float rows (only when

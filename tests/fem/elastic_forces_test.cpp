@@ -113,7 +113,7 @@ TEST(ElasticForcesTest, TangentTimesEqualsTheAssembledTangentProduct) {
         u.segment<3>(3 * i) += Eigen::Vector3d(0.1 * x.x(), 0.3 * x.x() * x.y() / 0.03, 0.05 * std::sin(90.0 * x.z()));
       }
       std::vector<Eigen::Vector4d> cache;
-      std::vector<double> turned;
+      HugePageVector<double> turned;
       Eigen::VectorXd tangent, force;
       ComputeElasticForces(m, u, &tangent, &force, &cache, &turned);
       // Only the SIMD pass leaves them (kAuto is scalar too under VESICA_FEM_ELEMENT_KERNEL=scalar).
@@ -131,7 +131,7 @@ TEST(ElasticForcesTest, TangentTimesEqualsTheAssembledTangentProduct) {
           << "kernel " << static_cast<int>(kernel);
       // Stale turned gradients (another displacement's) are used as given: the product follows them.
       if (!turned.empty()) {
-        std::vector<double> other = turned;
+        HugePageVector<double> other = turned;
         for (double& r : other) r *= 1.01;
         CorotationalTangentTimes(m, cache, x, from_turned, &other);
         EXPECT_GT((from_turned - assembled).cwiseAbs().maxCoeff(), 1e-3 * scale);
