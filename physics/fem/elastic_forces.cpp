@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 
 #include "physics/fem/block_rows_simd.h"
 #include "physics/fem/element_pass_simd.h"
@@ -188,7 +189,8 @@ bool SimdPassApplies(const FemModel& m, ElementKernel kernel, bool wants_tangent
 double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eigen::VectorXd& u,
                               Eigen::VectorXd* tangent, const FloatTangentRows* float_tangent, double tangent_scale,
                               Eigen::VectorXd* force, std::vector<Eigen::Vector4d>& cache,
-                              HugePageVector<double>* turned_gradients, double* smallest_turn_cosine) {
+                              HugePageVector<double>* turned_gradients, double* smallest_turn_cosine,
+                              const PassProducts* products) {
   if (static_cast<int>(cache.size()) != m.rest_mesh.num_tets())
     cache.assign(m.rest_mesh.num_tets(), Eigen::Vector4d(0, 0, 0, 1));
   force->setZero(u.size());
@@ -212,6 +214,14 @@ double SimdCorotationalForces(const FemModel& m, ElementKernel kernel, const Eig
     args.turned_gradients_out = turned_gradients->data();
   }
   args.smallest_turn_cosine = smallest_turn_cosine;
+  if (products) {
+    args.num_products = products->count;
+    for (int k = 0; k < products->count; ++k) {
+      products->y[k]->setZero(u.size());
+      args.product_in[k] = products->x[k]->data();
+      args.product_out[k] = products->y[k]->data();
+    }
+  }
   return kernel == ElementKernel::kAvx512 ? ElementPassAvx512(args) : ElementPassAvx2(args);
 }
 
@@ -287,25 +297,30 @@ bool FloatTangentAvailable(const FemModel& model) {
 double ComputeElasticForcesFloatTangent(const FemModel& model, const Eigen::VectorXd& u,
                                         const FloatTangentRows& tangent, double tangent_scale,
                                         Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
-                                        HugePageVector<double>* turned_gradients, double* largest_turn_rad) {
+                                        HugePageVector<double>* turned_gradients, double* largest_turn_rad,
+                                        const PassProducts* products) {
   double smallest_turn_cosine = 1.0;
-  const double energy =
-      SimdCorotationalForces(model, ResolveElementKernel(model.settings.element_kernel), u, nullptr, &tangent,
-                             tangent_scale, internal_force_N, *rotation_cache, turned_gradients, &smallest_turn_cosine);
+  const double energy = SimdCorotationalForces(model, ResolveElementKernel(model.settings.element_kernel), u, nullptr,
+                                               &tangent, tangent_scale, internal_force_N, *rotation_cache,
+                                               turned_gradients, &smallest_turn_cosine, products);
   if (largest_turn_rad) *largest_turn_rad = LargestTurn(smallest_turn_cosine);
   return energy;
 }
 
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
                             Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
-                            HugePageVector<double>* turned_gradients, double* largest_turn_rad, double tangent_scale) {
+                            HugePageVector<double>* turned_gradients, double* largest_turn_rad, double tangent_scale,
+                            const PassProducts* products) {
   const ElementKernel kernel = ResolveElementKernel(model.settings.element_kernel);
   double smallest_turn_cosine = 1.0;  // |q_before . q_after| = cos(turn / 2)
   double energy = 0.0;
+  if (products && products->count > 0 &&
+      (!rotation_cache || model.settings.element_model != ElementModel::kCorotational))
+    throw std::invalid_argument("ComputeElasticForces: products need a corotational body and a rotation cache");
   if (rotation_cache && SimdPassApplies(model, kernel, tangent_values != nullptr)) {
     // writes every turned gradient: no clear
     energy = SimdCorotationalForces(model, kernel, u, tangent_values, nullptr, tangent_scale, internal_force_N,
-                                    *rotation_cache, turned_gradients, &smallest_turn_cosine);
+                                    *rotation_cache, turned_gradients, &smallest_turn_cosine, products);
   } else {
     if (turned_gradients) turned_gradients->clear();  // only the SIMD pass fills them
     if (model.settings.element_model == ElementModel::kLinear)
@@ -313,6 +328,8 @@ double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eig
     else
       energy = CorotationalForces(model, u, tangent_values, internal_force_N, rotation_cache, &smallest_turn_cosine);
     if (tangent_values && tangent_scale != 1.0) *tangent_values *= tangent_scale;
+    for (int k = 0; products && k < products->count; ++k)
+      CorotationalTangentTimes(model, *rotation_cache, *products->x[k], *products->y[k]);
   }
   if (largest_turn_rad) *largest_turn_rad = LargestTurn(smallest_turn_cosine);
   return energy;

@@ -16,6 +16,17 @@ namespace vesica::physics {
 /// falls back to the next narrower kernel. Never kAuto.
 ElementKernel ResolveElementKernel(ElementKernel requested);
 
+/// Products with the tangent K_t that a corotational pass leaves, y[k] = K_t x[k] (k < count; x's
+/// entries taken as given, fixed dofs included): CorotationalTangentTimes's values, taken during
+/// the vectorised pass (each tet's turned gradients still in registers: no pass of their own) or,
+/// where the pass is scalar, after it. The rotation cache is required.
+struct PassProducts {
+  int count = 0;
+  const Eigen::VectorXd* x[2] = {};
+  Eigen::VectorXd* y[2] = {};
+  void Add(const Eigen::VectorXd& in, Eigen::VectorXd& out) { x[count] = &in, y[count] = &out, ++count; }
+};
+
 /// u: 3n displacement (m). Writes the tangent values in pattern order (nnz, N/m; for a linear
 /// body a copy of the constant K, skipped when tangent_values is null) and the internal force
 /// (3n, N). Returns the elastic energy (J). rotation_cache (optional, per tet quaternion x y z w,
@@ -26,11 +37,12 @@ ElementKernel ResolveElementKernel(ElementKernel requested);
 /// largest_turn_rad (optional): the largest angle any tet turned since the cache was last written
 /// (0 for a linear body, +inf for a corotational one without a cache). tangent_scale: the tangent
 /// values are tangent_scale K_t (an implicit step's stiffness factor, applied in the SIMD pass's one
-/// write of each value instead of another pass over them).
+/// write of each value instead of another pass over them). products (optional, corotational with a
+/// cache): PassProducts.
 double ComputeElasticForces(const FemModel& model, const Eigen::VectorXd& u, Eigen::VectorXd* tangent_values,
                             Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache = nullptr,
                             HugePageVector<double>* turned_gradients = nullptr, double* largest_turn_rad = nullptr,
-                            double tangent_scale = 1.0);
+                            double tangent_scale = 1.0, const PassProducts* products = nullptr);
 
 /// The tangent rounded to float in FloatBlockRows' layout (pcg_solver.h): its values and, per node
 /// pair of model.tangent_blocks, the offsets FloatTangentRowOffsets gives.
@@ -53,7 +65,8 @@ bool FloatTangentAvailable(const FemModel& model);
 double ComputeElasticForcesFloatTangent(const FemModel& model, const Eigen::VectorXd& u,
                                         const FloatTangentRows& tangent, double tangent_scale,
                                         Eigen::VectorXd* internal_force_N, std::vector<Eigen::Vector4d>* rotation_cache,
-                                        HugePageVector<double>* turned_gradients, double* largest_turn_rad);
+                                        HugePageVector<double>* turned_gradients, double* largest_turn_rad,
+                                        const PassProducts* products = nullptr);
 
 /// y = K_t x for a corotational body without assembling K_t (the tangent ComputeElasticForces
 /// assembles, R K R^T per tet, at the rotations it left in rotation_cache), element by element

@@ -37,6 +37,12 @@ struct ElementPassArgs {
   /// Pass only, optional: the smallest |q_before . q_after| over the tets, the cosine of half the
   /// largest turn since the rotation cache was last written.
   double* smallest_turn_cosine = nullptr;
+  /// Pass only, optional: product_out[k] += K_t product_in[k] (k < num_products) at the pass's
+  /// rotations, taken while each tet's turned gradients are in registers: the values
+  /// TangentProduct gives from the turned gradients the pass leaves, without a pass of its own.
+  int num_products = 0;
+  const double* product_in[2] = {};
+  double* product_out[2] = {};
 };
 
 /// The scalar pass's rotation rule for one element: the warm-started quaternion iteration where

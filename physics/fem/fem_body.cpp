@@ -33,6 +33,11 @@ struct FemBody::Workspace {
   Eigen::VectorXd last_increment;        // PCG warm start
   IncrementExtrapolation extrapolation;  // kRotatedFactorPcg: warm start from the last increments
   Eigen::VectorXd warm_start_product;    // S times the kRotatedFactorPcg warm start
+  // Step's products with K_t taken in the element pass (ProductsMatrixFree): the warm start
+  // predicted before the pass (used by the next SolveSystem when warm_start_from_pass), its
+  // free part's K_t product, and the Newmark damping drive's.
+  Eigen::VectorXd pass_warm_start, pass_warm_start_free, pass_warm_start_product, damping_drive_product;
+  bool warm_start_from_pass = false;
   Eigen::VectorXd solution_product;      // S du after a kRotatedFactorPcg solve (b - r)
   bool solution_product_valid = false;
   std::vector<Eigen::Vector4d> rotations;  // corotational warm start, per tet
@@ -150,15 +155,15 @@ void FemBody::SetAttachmentStiffness(const Eigen::VectorXd& stiffness, const Eig
   w.force_refactor = true;
 }
 
-void FemBody::DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+void FemBody::DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y, const Eigen::VectorXd* tangent_x) const {
   const FemSettings& s = model_->settings;
   y.setZero(x.size());
   if (x.isZero(0.0)) return;  // backward Euler's damping drive: skip the product
   if (s.rayleigh_mass_per_s != 0.0) y += s.rayleigh_mass_per_s * model_->MassTimes(x);
   if (s.rayleigh_stiffness_s != 0.0) {
     Eigen::VectorXd kx;
-    TangentTimes(x, kx);
-    y += s.rayleigh_stiffness_s * kx;
+    if (!tangent_x) TangentTimes(x, kx);
+    y += s.rayleigh_stiffness_s * (tangent_x ? *tangent_x : kx);
   }
 }
 
@@ -192,6 +197,21 @@ void FemBody::TangentTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
 }
 
 void FemBody::SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  // PCG's directions and warm starts are 0 on the fixed dofs already: then x is its own free part,
+  // and no masked copy is made.
+  const FemModel& m = *model_;
+  bool fixed_zero = true;
+  for (int i : m.fixed_dofs) fixed_zero = fixed_zero && x[i] == 0.0;
+  if (fixed_zero) {
+    TangentTimes(x, y);
+  } else {
+    const Eigen::VectorXd masked = x.cwiseProduct(m.free_dofs);
+    TangentTimes(masked, y);
+  }
+  SystemTimesFromTangentProduct(x, y);
+}
+
+void FemBody::SystemTimesFromTangentProduct(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   // S = stiffness_scale K_t + mass_scale M + springs (k + c_D d), with the rows and columns of fixed
   // dofs replaced by the identity's (as SystemValuesFromTangent writes them).
   const FemModel& m = *model_;
@@ -199,14 +219,11 @@ void FemBody::SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   const Workspace& w = *work_;
   const SystemCoefficients c = IntegratorCoefficients(s);
   const auto [mass_scale, stiffness_scale] = SystemMatrixScales(s);
-  // PCG's directions and warm starts are 0 on the fixed dofs already: then x is its own free part,
-  // and no masked copy is made.
   bool fixed_zero = true;
   for (int i : m.fixed_dofs) fixed_zero = fixed_zero && x[i] == 0.0;
   Eigen::VectorXd masked;
   if (!fixed_zero) masked = x.cwiseProduct(m.free_dofs);
   const Eigen::VectorXd& free_x = fixed_zero ? x : masked;
-  TangentTimes(free_x, y);
   if (m.uses_consistent_mass())
     y = stiffness_scale * y + mass_scale * (PatternMatrix(m.pattern, m.consistent_mass_values) * free_x);
   else  // one pass over the vectors
@@ -243,14 +260,15 @@ bool FemBody::TangentInFloatRows() const {
          !m.uses_consistent_mass() && FloatBlockRows::available() && FloatTangentAvailable(m);
 }
 
-void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
+void FemBody::AssembleSystem(const Eigen::VectorXd& u, const PassProducts* products) {
   const FemModel& m = *model_;
   const FemSettings& s = m.settings;
   Workspace& w = *work_;
   const bool linear = s.element_model == ElementModel::kLinear;
   if (MatrixFree()) {  // forces and rotations only: the solver applies K_t element by element
     double turn = 0.0;
-    w.elastic_energy = ComputeElasticForces(m, u, nullptr, &w.internal_force, &w.rotations, &w.turned_gradients, &turn);
+    w.elastic_energy =
+        ComputeElasticForces(m, u, nullptr, &w.internal_force, &w.rotations, &w.turned_gradients, &turn, 1.0, products);
     w.rotation_drift_rad += turn;
     w.system_assembled = true;
     return;
@@ -268,7 +286,7 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
     double turn = 0.0;
     w.elastic_energy = ComputeElasticForcesFloatTangent(m, u, {w.float_rows.values(), &w.float_pair_offsets},
                                                         SystemMatrixScales(s).stiffness, &w.internal_force,
-                                                        &w.rotations, &w.turned_gradients, &turn);
+                                                        &w.rotations, &w.turned_gradients, &turn, products);
     w.rotation_drift_rad += turn;
     w.system_assembled = true;
     AddSystemTermsToFloatRows();
@@ -281,7 +299,7 @@ void FemBody::AssembleSystem(const Eigen::VectorXd& u) {
   double turn = 0.0;
   w.elastic_energy = ComputeElasticForces(
       m, u, (linear && w.linear_system_built) ? nullptr : &w.system_values, &w.internal_force, &w.rotations,
-      ProductsMatrixFree() ? &w.turned_gradients : nullptr, &turn, SystemMatrixScales(s).stiffness);
+      ProductsMatrixFree() ? &w.turned_gradients : nullptr, &turn, SystemMatrixScales(s).stiffness, products);
   w.rotation_drift_rad += turn;
   w.system_assembled = true;
   if (linear && w.linear_system_built) return;
@@ -463,10 +481,21 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
     // order), then scaled along itself to the minimum of the energy norm of the error,
     // alpha = du.b / du.S du: never worse than starting from zero in that norm. S du is the
     // product PCG starts from anyway, so the scale costs two dot products.
-    w.extrapolation.Predict(rhs.size(), du);
+    // The step may have predicted it before its element pass, which then took its K_t product.
+    const bool from_pass = w.warm_start_from_pass;
+    w.warm_start_from_pass = false;
+    if (from_pass)
+      du.swap(w.pass_warm_start);
+    else
+      w.extrapolation.Predict(rhs.size(), du);
     const Eigen::VectorXd* warm_start_product = nullptr;
-    if (w.extrapolation.history() > 0) {
-      system_times(du, w.warm_start_product);
+    if (from_pass || w.extrapolation.history() > 0) {
+      if (from_pass) {
+        w.warm_start_product.swap(w.pass_warm_start_product);
+        SystemTimesFromTangentProduct(du, w.warm_start_product);
+      } else {
+        system_times(du, w.warm_start_product);
+      }
       const double curvature = du.dot(w.warm_start_product);
       const double alpha = curvature > 0.0 ? du.dot(rhs) / curvature : 0.0;
       du *= alpha;
@@ -512,7 +541,25 @@ StepReport FemBody::Step() {
   const Eigen::VectorXd& v = state_.velocity_m_per_s;
   const Eigen::VectorXd& f_ext = state_.external_force_N;
 
-  AssembleSystem(u);
+  // The warm start and the Newmark damping drive need products with K_t at this step's rotations:
+  // with element-by-element products the element pass takes them (no passes of their own).
+  PassProducts pass_products;
+  Eigen::VectorXd mass_drive, damping_drive;
+  const bool drives_before_pass = s.integrator == TimeIntegrator::kBackwardEuler || w.acceleration_valid;
+  if (drives_before_pass) IntegratorDrives(s, v, state_.acceleration_m_per_s2, mass_drive, damping_drive);
+  const bool damping_from_pass =
+      ProductsMatrixFree() && drives_before_pass && s.rayleigh_stiffness_s != 0.0 && !damping_drive.isZero(0.0);
+  if (damping_from_pass) pass_products.Add(damping_drive, w.damping_drive_product);
+  w.warm_start_from_pass = ProductsMatrixFree() && w.extrapolation.history() > 0;
+  if (w.warm_start_from_pass) {
+    w.extrapolation.Predict(u.size(), w.pass_warm_start);
+    // SystemTimes's product: K_t of the free part
+    bool fixed_zero = true;
+    for (int i : m.fixed_dofs) fixed_zero = fixed_zero && w.pass_warm_start[i] == 0.0;
+    if (!fixed_zero) w.pass_warm_start_free = w.pass_warm_start.cwiseProduct(m.free_dofs);
+    pass_products.Add(fixed_zero ? w.pass_warm_start : w.pass_warm_start_free, w.pass_warm_start_product);
+  }
+  AssembleSystem(u, pass_products.count > 0 ? &pass_products : nullptr);
   Eigen::VectorXd damping_v;
   if (s.integrator == TimeIntegrator::kNewmark && !w.acceleration_valid) {
     // Start from equilibrium M a = f_ext - f_int - D v, so Newmark's energy balance holds from step 1.
@@ -533,10 +580,7 @@ StepReport FemBody::Step() {
     }
     w.acceleration_valid = true;
   }
-  const Eigen::VectorXd& a = state_.acceleration_m_per_s2;
-
-  Eigen::VectorXd mass_drive, damping_drive;
-  IntegratorDrives(s, v, a, mass_drive, damping_drive);
+  if (!drives_before_pass) IntegratorDrives(s, v, state_.acceleration_m_per_s2, mass_drive, damping_drive);
   Eigen::VectorXd rhs;
   if (m.uses_consistent_mass())
     rhs = f_ext - w.internal_force + m.MassTimes(mass_drive);
@@ -544,7 +588,7 @@ StepReport FemBody::Step() {
     rhs = f_ext - w.internal_force + m.lumped_mass_kg.cwiseProduct(mass_drive);
   if (s.integrator != TimeIntegrator::kBackwardEuler) {  // backward Euler's damping drive is 0
     Eigen::VectorXd damping_term;
-    DampingTimes(damping_drive, damping_term);
+    DampingTimes(damping_drive, damping_term, damping_from_pass ? &w.damping_drive_product : nullptr);
     rhs += damping_term;
   }
   if (w.attachment.any) {
@@ -572,11 +616,13 @@ StepReport FemBody::Step() {
       w.force_refactor = true;  // not positive definite: the solve refactorises, fails and rejects the step
   }
   Eigen::VectorXd du;
-  if (!SolveSystem(rhs, du, s.pcg_relative_tolerance, s.pcg_max_iterations, &report))
+  const bool solved = SolveSystem(rhs, du, s.pcg_relative_tolerance, s.pcg_max_iterations, &report);
+  w.warm_start_from_pass = false;  // consumed by this solve, or stale
+  if (!solved)
     return reject(rhs.allFinite() ? "the linear solve failed (system not positive definite or non-finite)"
                                   : "non-finite right-hand side");
   Eigen::VectorXd v_next, a_next;
-  IntegratorUpdate(s, du, v, a, v_next, a_next);
+  IntegratorUpdate(s, du, v, state_.acceleration_m_per_s2, v_next, a_next);
   if (!v_next.allFinite() || !a_next.allFinite()) return reject("non-finite velocity or acceleration");
 
   // Energy after the step, elastic part to second order about u (one product with K_t).

@@ -15,6 +15,8 @@
 
 namespace vesica::physics {
 
+struct PassProducts;
+
 struct StepReport {
   bool accepted = false;           ///< false: the state was rolled back (left as before the step)
   int solver_iterations = 0;       ///< PCG iterations (0 for a direct CHOLMOD solve)
@@ -74,7 +76,9 @@ class FemBody {
 
  private:
   struct Workspace;
-  void AssembleSystem(const Eigen::VectorXd& u);
+  /// The element pass at u: forces, rotations and S (or what stands for it); products: taken in
+  /// the same pass (ProductsMatrixFree bodies only).
+  void AssembleSystem(const Eigen::VectorXd& u, const PassProducts* products = nullptr);
   /// S = stiffness K_t + the mass and spring terms (AddSystemTerms), for a K_t given whole.
   void SystemValuesFromTangent(const Eigen::VectorXd& tangent, Eigen::VectorXd& system) const;
   /// Adds mass M (+ springs) to values holding stiffness K_t, then makes the Dirichlet rows and
@@ -89,7 +93,8 @@ class FemBody {
   void UpdateNodeRotations();
   bool SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, double tolerance, int max_iterations,
                    StepReport* report);
-  void DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// y = D x (Rayleigh); tangent_x: K_t x when the caller has it (from the element pass).
+  void DampingTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y, const Eigen::VectorXd* tangent_x = nullptr) const;
   /// The tangent is applied element by element and never assembled (TangentIsMatrixFree).
   bool MatrixFree() const;
   /// Products with K_t and S element by element, S assembled or not (ProductsAreMatrixFree).
@@ -99,6 +104,8 @@ class FemBody {
   void TangentTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   /// y = S x (the system matrix SystemValuesFromTangent builds) from products, for ProductsMatrixFree().
   void SystemTimes(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// The same from y = K_t (x with its fixed entries taken as 0), overwritten with S x.
+  void SystemTimesFromTangentProduct(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   /// du . K_t du for the step's energy check: from S du, which kRotatedFactorPcg's solve leaves
   /// (S du = b - r), minus the mass and spring terms, when the mass is lumped; else one product.
   double TangentQuadraticForm(const Eigen::VectorXd& du) const;
