@@ -94,97 +94,101 @@ TEST(ElasticForcesTest, PatternMultiplyEqualsTheSparseProduct) {
   EXPECT_LT((y - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff());
 }
 
-// The element-by-element product (CorotationalTangentTimes) is the assembled tangent's product, for
-// the scalar and the SIMD kernels, on a turned, stretched and sheared body; the SIMD product gives
-// it both from the rotation cache and from the turned gradients the pass left.
-TEST(ElasticForcesTest, TangentTimesEqualsTheAssembledTangentProduct) {
-  // Every kernel this CPU runs; 252 and 270 tets: whole and partial vectors of 4 and 8 lanes.
+// A gallbladder-material box of `cells` whose element pass runs `kernel`.
+FemModel GallbladderBlock(const Eigen::Vector3i& cells, ElementKernel kernel) {
+  FemSettings s;
+  s.material.youngs_modulus_Pa = 2300.0;
+  s.material.poisson_ratio = 0.45;
+  s.element_kernel = kernel;
+  return BuildFemModel(MakeBoxTetMesh({0.08, 0.03, 0.03}, cells), s, {});
+}
+
+// A rigid turn of 1.1 rad with a stretch, a shear and a wave on top.
+Eigen::VectorXd TurnedStretchedSheared(const FemModel& m) {
+  Eigen::VectorXd u = RigidRotation(m, {1, 2, 0.5}, 1.1, {0, 0, 0});
+  for (int i = 0; i < m.num_nodes(); ++i) {
+    const Eigen::Vector3d x = m.rest_mesh.vertices.row(i);
+    u.segment<3>(3 * i) += Eigen::Vector3d(0.1 * x.x(), 0.3 * x.x() * x.y() / 0.03, 0.05 * std::sin(90.0 * x.z()));
+  }
+  return u;
+}
+
+// Calls check(kernel, model, u) for every element kernel this CPU runs on two blocks of 252 and 270
+// tets (whole and partial vectors of 4 and 8 lanes), u = TurnedStretchedSheared.
+template <typename Check>
+void ForEachKernelOnATurnedBlock(const Check& check) {
   for (ElementKernel kernel :
        {ElementKernel::kScalar, ElementKernel::kAvx2, ElementKernel::kAvx512, ElementKernel::kAuto})
     for (const Eigen::Vector3i& cells : {Eigen::Vector3i(7, 3, 2), Eigen::Vector3i(5, 3, 3)}) {
       if (kernel != ElementKernel::kAuto && ResolveElementKernel(kernel) != kernel) continue;
-      FemSettings s;
-      s.material.youngs_modulus_Pa = 2300.0;
-      s.material.poisson_ratio = 0.45;
-      s.element_kernel = kernel;
-      const FemModel m = BuildFemModel(MakeBoxTetMesh({0.08, 0.03, 0.03}, cells), s, {});
-      Eigen::VectorXd u = RigidRotation(m, {1, 2, 0.5}, 1.1, {0, 0, 0});
-      for (int i = 0; i < m.num_nodes(); ++i) {
-        const Eigen::Vector3d x = m.rest_mesh.vertices.row(i);
-        u.segment<3>(3 * i) += Eigen::Vector3d(0.1 * x.x(), 0.3 * x.x() * x.y() / 0.03, 0.05 * std::sin(90.0 * x.z()));
-      }
-      std::vector<Eigen::Vector4d> cache;
-      HugePageVector<double> turned;
-      Eigen::VectorXd tangent, force;
-      ComputeElasticForces(m, u, &tangent, &force, &cache, &turned);
-      // Only the SIMD pass leaves them (kAuto is scalar too under VESICA_FEM_ELEMENT_KERNEL=scalar).
-      EXPECT_EQ(turned.empty(), ResolveElementKernel(kernel) == ElementKernel::kScalar);
-      Eigen::VectorXd x(m.num_dofs());
-      for (int i = 0; i < m.num_dofs(); ++i) x[i] = std::cos(0.7 * i) * 1e-3;
-      Eigen::VectorXd assembled, element_by_element, from_turned;
-      SymmetricPatternMultiply(m.pattern, tangent, x, assembled);
-      CorotationalTangentTimes(m, cache, x, element_by_element);
-      CorotationalTangentTimes(m, cache, x, from_turned, &turned);
-      const double scale = assembled.cwiseAbs().maxCoeff();
-      EXPECT_LT((element_by_element - assembled).cwiseAbs().maxCoeff(), 1e-12 * scale)
-          << "kernel " << static_cast<int>(kernel);
-      EXPECT_LT((from_turned - assembled).cwiseAbs().maxCoeff(), 1e-12 * scale)
-          << "kernel " << static_cast<int>(kernel);
-      // Stale turned gradients (another displacement's) are used as given: the product follows them.
-      if (!turned.empty()) {
-        HugePageVector<double> other = turned;
-        for (double& r : other) r *= 1.01;
-        CorotationalTangentTimes(m, cache, x, from_turned, &other);
-        EXPECT_GT((from_turned - assembled).cwiseAbs().maxCoeff(), 1e-3 * scale);
-      }
+      const FemModel m = GallbladderBlock(cells, kernel);
+      check(kernel, m, TurnedStretchedSheared(m));
     }
+}
+
+// The element-by-element product (CorotationalTangentTimes) is the assembled tangent's product, for
+// the scalar and the SIMD kernels, on a turned, stretched and sheared body; the SIMD product gives
+// it both from the rotation cache and from the turned gradients the pass left.
+TEST(ElasticForcesTest, TangentTimesEqualsTheAssembledTangentProduct) {
+  ForEachKernelOnATurnedBlock([](ElementKernel kernel, const FemModel& m, const Eigen::VectorXd& u) {
+    std::vector<Eigen::Vector4d> cache;
+    HugePageVector<double> turned;
+    Eigen::VectorXd tangent, force;
+    ComputeElasticForces(m, u, &tangent, &force, &cache, &turned);
+    // Only the SIMD pass leaves them (kAuto is scalar too under VESICA_FEM_ELEMENT_KERNEL=scalar).
+    EXPECT_EQ(turned.empty(), ResolveElementKernel(kernel) == ElementKernel::kScalar);
+    Eigen::VectorXd x(m.num_dofs());
+    for (int i = 0; i < m.num_dofs(); ++i) x[i] = std::cos(0.7 * i) * 1e-3;
+    Eigen::VectorXd assembled, element_by_element, from_turned;
+    SymmetricPatternMultiply(m.pattern, tangent, x, assembled);
+    CorotationalTangentTimes(m, cache, x, element_by_element);
+    CorotationalTangentTimes(m, cache, x, from_turned, &turned);
+    const double scale = assembled.cwiseAbs().maxCoeff();
+    EXPECT_LT((element_by_element - assembled).cwiseAbs().maxCoeff(), 1e-12 * scale)
+        << "kernel " << static_cast<int>(kernel);
+    EXPECT_LT((from_turned - assembled).cwiseAbs().maxCoeff(), 1e-12 * scale) << "kernel " << static_cast<int>(kernel);
+    // Stale turned gradients (another displacement's) are used as given: the product follows them.
+    if (!turned.empty()) {
+      HugePageVector<double> other = turned;
+      for (double& r : other) r *= 1.01;
+      CorotationalTangentTimes(m, cache, x, from_turned, &other);
+      EXPECT_GT((from_turned - assembled).cwiseAbs().maxCoeff(), 1e-3 * scale);
+    }
+  });
 }
 
 // Products taken in the element pass (PassProducts) are the separate products' values bit for bit,
 // on every kernel (the scalar pass takes them after itself), for the double and the float-row
 // tangent; the displacement leaves 94-130 of the tets with det F <= 0.2 (the scalar rule's lanes).
 TEST(ElasticForcesTest, ProductsTakenInThePassAreTheSeparateProducts) {
-  for (ElementKernel kernel :
-       {ElementKernel::kScalar, ElementKernel::kAvx2, ElementKernel::kAvx512, ElementKernel::kAuto})
-    for (const Eigen::Vector3i& cells : {Eigen::Vector3i(7, 3, 2), Eigen::Vector3i(5, 3, 3)}) {
-      if (kernel != ElementKernel::kAuto && ResolveElementKernel(kernel) != kernel) continue;
-      FemSettings s;
-      s.material.youngs_modulus_Pa = 2300.0;
-      s.material.poisson_ratio = 0.45;
-      s.element_kernel = kernel;
-      const FemModel m = BuildFemModel(MakeBoxTetMesh({0.08, 0.03, 0.03}, cells), s, {});
-      Eigen::VectorXd u = RigidRotation(m, {1, 2, 0.5}, 1.1, {0, 0, 0});
-      for (int i = 0; i < m.num_nodes(); ++i) {
-        const Eigen::Vector3d x = m.rest_mesh.vertices.row(i);
-        u.segment<3>(3 * i) += Eigen::Vector3d(0.1 * x.x(), 0.3 * x.x() * x.y() / 0.03, 0.05 * std::sin(90.0 * x.z()));
-      }
-      Eigen::VectorXd x1(m.num_dofs()), x2(m.num_dofs());
-      for (int i = 0; i < m.num_dofs(); ++i) x1[i] = std::cos(0.7 * i) * 1e-3, x2[i] = std::sin(1.3 * i) * 1e-2;
-      for (bool float_tangent : {false, true}) {
-        if (float_tangent && !FloatTangentAvailable(m)) continue;
-        std::vector<Eigen::Vector4d> cache;
-        HugePageVector<double> turned;
-        Eigen::VectorXd tangent, force, y1, y2;
-        PassProducts products;
-        products.Add(x1, y1);
-        products.Add(x2, y2);
-        FloatBlockRows rows;
-        rows.Reshape(m.pattern);
-        const std::vector<int> offsets = FloatTangentRowOffsets(m.tangent_blocks, rows.ValueIndexOfSlots(m.pattern));
-        if (float_tangent)
-          ComputeElasticForcesFloatTangent(m, u, {rows.values(), &offsets}, 1.0, &force, &cache, &turned, nullptr,
-                                           &products);
-        else
-          ComputeElasticForces(m, u, &tangent, &force, &cache, &turned, nullptr, 1.0, &products);
-        Eigen::VectorXd separate1, separate2;
-        CorotationalTangentTimes(m, cache, x1, separate1, &turned);
-        CorotationalTangentTimes(m, cache, x2, separate2, &turned);
-        ASSERT_EQ(y1.size(), m.num_dofs());
-        EXPECT_GT(separate1.cwiseAbs().maxCoeff(), 0.0);
-        EXPECT_EQ((y1 - separate1).cwiseAbs().maxCoeff(), 0.0) << "kernel " << static_cast<int>(kernel);
-        EXPECT_EQ((y2 - separate2).cwiseAbs().maxCoeff(), 0.0) << "kernel " << static_cast<int>(kernel);
-      }
+  ForEachKernelOnATurnedBlock([](ElementKernel kernel, const FemModel& m, const Eigen::VectorXd& u) {
+    Eigen::VectorXd x1(m.num_dofs()), x2(m.num_dofs());
+    for (int i = 0; i < m.num_dofs(); ++i) x1[i] = std::cos(0.7 * i) * 1e-3, x2[i] = std::sin(1.3 * i) * 1e-2;
+    for (bool float_tangent : {false, true}) {
+      if (float_tangent && !FloatTangentAvailable(m)) continue;
+      std::vector<Eigen::Vector4d> cache;
+      HugePageVector<double> turned;
+      Eigen::VectorXd tangent, force, y1, y2;
+      PassProducts products;
+      products.Add(x1, y1);
+      products.Add(x2, y2);
+      FloatBlockRows rows;
+      rows.Reshape(m.pattern);
+      const std::vector<int> offsets = FloatTangentRowOffsets(m.tangent_blocks, rows.ValueIndexOfSlots(m.pattern));
+      if (float_tangent)
+        ComputeElasticForcesFloatTangent(m, u, {rows.values(), &offsets}, 1.0, &force, &cache, &turned, nullptr,
+                                         &products);
+      else
+        ComputeElasticForces(m, u, &tangent, &force, &cache, &turned, nullptr, 1.0, &products);
+      Eigen::VectorXd separate1, separate2;
+      CorotationalTangentTimes(m, cache, x1, separate1, &turned);
+      CorotationalTangentTimes(m, cache, x2, separate2, &turned);
+      ASSERT_EQ(y1.size(), m.num_dofs());
+      EXPECT_GT(separate1.cwiseAbs().maxCoeff(), 0.0);
+      EXPECT_EQ((y1 - separate1).cwiseAbs().maxCoeff(), 0.0) << "kernel " << static_cast<int>(kernel);
+      EXPECT_EQ((y2 - separate2).cwiseAbs().maxCoeff(), 0.0) << "kernel " << static_cast<int>(kernel);
     }
+  });
 }
 
 TEST(ElasticForcesTest, ProductsInThePassNeedACorotationalBodyWithARotationCache) {
