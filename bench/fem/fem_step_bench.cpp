@@ -12,7 +12,7 @@
 #include <string>
 
 #include "bench/fem/min_statistic.h"
-#include "bench/fem/spectrum_counters.h"
+#include "bench/fem/pulled_body_steps.h"
 #include "physics/fem/fem_body.h"
 #include "physics/mesh/primitives.h"
 
@@ -46,7 +46,7 @@ std::shared_ptr<FemModel> GallbladderModel(int nodes, ElementModel element, Line
   s.cholmod_refresh_steps = refresh_steps;
   s.pcg_max_iterations = max_iterations;
   s.rotated_factor_gauss_seidel = gauss_seidel;
-  if (sweeps > 0) s.rotated_factor_sweeps = sweeps;  // 0: the default
+  if (sweeps > 0) s.rotated_factor_sweeps = sweeps;                    // 0: the default
   if (local_share >= 0.0) s.rotated_factor_local_share = local_share;  // negative: the default
   s.time_step_s = 0.01;
   s.rayleigh_mass_per_s = 1.0;
@@ -61,28 +61,7 @@ void BM_FemStep(benchmark::State& state, ElementModel element, LinearSolverKind 
                 int max_iterations, bool gauss_seidel, int sweeps, double local_share) {
   const auto model =
       GallbladderModel(nodes, element, solver, refresh_steps, max_iterations, gauss_seidel, sweeps, local_share);
-  FemBody body(model);
-  const int grasped = model->num_nodes() - 1;
-  Eigen::VectorXd pull = Eigen::VectorXd::Zero(model->num_dofs());
-  body.Step();  // untimed: the first assembly and factorisation are pre-process (BM_FemPreprocess)
-  double iterations = 0.0, residual = 0.0, rejected = 0.0;
-  SpectrumCounters spectrum;
-  for (auto _ : state) {
-    const double t = body.state().time_s;
-    pull.segment<3>(3 * grasped) = 0.05 * std::sin(2.0 * M_PI * 2.0 * t) * Eigen::Vector3d(0.3, 0.0, 1.0);
-    body.SetExternalForces(pull);
-    const StepReport r = body.Step();
-    iterations += r.solver_iterations;
-    spectrum.Add(r.solver_spectrum);
-    residual = std::max(residual, r.relative_residual);
-    rejected += r.accepted ? 0.0 : 1.0;
-  }
-  state.counters["nodes"] = model->num_nodes();
-  state.counters["tets"] = model->rest_mesh.num_tets();
-  state.counters["pcg_iters"] = benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
-  state.counters["max_rel_residual"] = residual;
-  state.counters["rejected"] = rejected;
-  spectrum.Report(state);
+  RunPulledSteps(state, model, {{model->num_nodes() - 1}, 0.05, Eigen::Vector3d(0.3, 0.0, 1.0)});
 }
 
 // The model, the first assembly and factorisation: with kCholmod the exact factor, with

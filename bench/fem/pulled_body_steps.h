@@ -1,0 +1,59 @@
+#pragma once
+// The timed loop of the BM_FemStep rows: a body pulled by a sinusoidal force shared by some of
+// its nodes (so every step has work to do: a body at rest would let the warm-started PCG stop at
+// once), one untimed first step (the first assembly and factorisation are pre-process), then one
+// benchmark iteration a step. Counters: iterations a step, the worst relative residual, rejected
+// steps, the preconditioned spectrum's widest range, and how far the pulled nodes went.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+#include "bench/fem/spectrum_counters.h"
+#include "physics/fem/fem_body.h"
+
+namespace vesica::physics {
+
+struct SinusoidalPull {
+  std::vector<int> nodes;     ///< the force is shared equally among these
+  double amplitude_N = 0.0;   ///< summed over the nodes, times direction
+  Eigen::Vector3d direction;  ///< not normalised: the box's rows pull along (0.3, 0, 1)
+  double frequency_hz = 2.0;
+};
+
+inline void RunPulledSteps(benchmark::State& state, const std::shared_ptr<const FemModel>& model,
+                           const SinusoidalPull& pull) {
+  FemBody body(model);
+  Eigen::VectorXd force = Eigen::VectorXd::Zero(model->num_dofs());
+  body.Step();
+  const double share = 1.0 / static_cast<double>(pull.nodes.size());
+  double iterations = 0.0, residual = 0.0, rejected = 0.0, displacement = 0.0;
+  SpectrumCounters spectrum;
+  for (auto _ : state) {
+    const double t = body.state().time_s;
+    for (int node : pull.nodes)
+      force.segment<3>(3 * node) =
+          pull.amplitude_N * share * std::sin(2.0 * std::numbers::pi * pull.frequency_hz * t) * pull.direction;
+    body.SetExternalForces(force);
+    const StepReport r = body.Step();
+    iterations += r.solver_iterations;
+    spectrum.Add(r.solver_spectrum);
+    residual = std::max(residual, r.relative_residual);
+    rejected += r.accepted ? 0.0 : 1.0;
+    for (int node : pull.nodes)
+      displacement = std::max(displacement, body.state().displacement_m.segment<3>(3 * node).norm());
+  }
+  state.counters["nodes"] = model->num_nodes();
+  state.counters["tets"] = model->rest_mesh.num_tets();
+  state.counters["pcg_iters"] = benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
+  state.counters["max_rel_residual"] = residual;
+  state.counters["rejected"] = rejected;
+  state.counters["pulled_max_disp_mm"] = 1e3 * displacement;
+  spectrum.Report(state);
+}
+
+}  // namespace vesica::physics
