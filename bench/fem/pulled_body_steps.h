@@ -35,7 +35,7 @@ inline void RunPulledSteps(benchmark::State& state, const std::shared_ptr<const 
   SpectrumCounters spectrum;
   for (auto _ : state) {
     const double t = body.state().time_s;
-    for (int node : pull.nodes)
+    for (const Eigen::Index node : pull.nodes)
       force.segment<3>(3 * node) =
           pull.amplitude_N * share * std::sin(2.0 * std::numbers::pi * pull.frequency_hz * t) * pull.direction;
     body.SetExternalForces(force);
@@ -44,7 +44,7 @@ inline void RunPulledSteps(benchmark::State& state, const std::shared_ptr<const 
     spectrum.Add(r.solver_spectrum);
     residual = std::max(residual, r.relative_residual);
     rejected += r.accepted ? 0.0 : 1.0;
-    for (int node : pull.nodes)
+    for (const Eigen::Index node : pull.nodes)
       displacement = std::max(displacement, body.state().displacement_m.segment<3>(3 * node).norm());
   }
   state.counters["nodes"] = model->num_nodes();
