@@ -17,6 +17,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "app/mesh_io/mesh_io.h"
 #include "bench/fem/min_statistic.h"
@@ -50,7 +51,10 @@ AnatomicalSetup LoadGallbladder(int file_suffix, double pull_N) {
   Eigen::Vector3d along = axes.eigenvectors().col(2);  // eigenvalues ascending
   Eigen::VectorXd s = centred * along;
   const auto near_end = [&](double end) { return ((s.array() - end).abs() < 0.01).count(); };
-  if (near_end(s.maxCoeff()) > near_end(s.minCoeff())) along = -along, s = -s;  // duct at max s
+  if (near_end(s.maxCoeff()) > near_end(s.minCoeff())) {  // put the duct at the largest s
+    along = -along;
+    s = -s;
+  }
   int tip = 0;
   for (int i = 0; i < a.mesh.num_vertices(); ++i) {
     if (s[i] > s.maxCoeff() - 1e-3 * kNeckHeldMm) a.neck.push_back({i, {true, true, true}});
