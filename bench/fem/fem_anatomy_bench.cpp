@@ -80,17 +80,8 @@ void BM_FemStepAnatomical(benchmark::State& state, ElementModel element, LinearS
                             .c_str());
     return;
   }
-  FemSettings s;
-  s.body_name = "gallbladder (anatomical)";
-  s.material = {2300.0, 0.45, 1000.0};
-  s.element_model = element;
-  s.integrator = TimeIntegrator::kNewmark;
-  s.solver = solver;
-  s.pcg_max_iterations = max_iterations;
-  s.rotated_factor_gauss_seidel = gauss_seidel;
-  s.time_step_s = 0.01;
-  s.rayleigh_mass_per_s = 1.0;
-  s.rayleigh_stiffness_s = 0.01;
+  const FemSettings s =
+      PulledGallbladderSettings("gallbladder (anatomical)", element, solver, max_iterations, gauss_seidel);
   const auto model = std::make_shared<const FemModel>(BuildFemModel(a.mesh, s, a.neck));
   RunPulledSteps(state, model, a.pull);
   state.counters["held"] = static_cast<double>(a.neck.size());

@@ -37,20 +37,10 @@ std::shared_ptr<FemModel> GallbladderModel(int nodes, ElementModel element, Line
                                            int refresh_steps = 1, int max_iterations = 20, bool gauss_seidel = false,
                                            int sweeps = 0, double local_share = -1.0) {
   const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, CellsForNodes(nodes));
-  FemSettings s;
-  s.body_name = "gallbladder box";
-  s.material = {2300.0, 0.45, 1000.0};
-  s.element_model = element;
-  s.integrator = TimeIntegrator::kNewmark;
-  s.solver = solver;
+  FemSettings s = PulledGallbladderSettings("gallbladder box", element, solver, max_iterations, gauss_seidel);
   s.cholmod_refresh_steps = refresh_steps;
-  s.pcg_max_iterations = max_iterations;
-  s.rotated_factor_gauss_seidel = gauss_seidel;
   if (sweeps > 0) s.rotated_factor_sweeps = sweeps;                    // 0: the default
   if (local_share >= 0.0) s.rotated_factor_local_share = local_share;  // negative: the default
-  s.time_step_s = 0.01;
-  s.rayleigh_mass_per_s = 1.0;
-  s.rayleigh_stiffness_s = 0.01;
   std::vector<DirichletNode> fixed;
   for (int i = 0; i < mesh.num_vertices(); ++i)
     if (mesh.vertices(i, 0) < 1e-12) fixed.push_back({i, {true, true, true}});

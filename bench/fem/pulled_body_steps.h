@@ -18,6 +18,25 @@
 
 namespace vesica::physics {
 
+/// The pulled gallbladder's settings shared by the box rows and the anatomical rows, so both run
+/// the same physical problem: gallbladder material (2.3 kPa, nu 0.45), Newmark (the paper's
+/// integrator), h = 10 ms, Rayleigh 1 /s and 0.01 s.
+inline FemSettings PulledGallbladderSettings(const char* body_name, ElementModel element, LinearSolverKind solver,
+                                             int max_iterations, bool gauss_seidel) {
+  FemSettings s;
+  s.body_name = body_name;
+  s.material = {2300.0, 0.45, 1000.0};
+  s.element_model = element;
+  s.integrator = TimeIntegrator::kNewmark;
+  s.solver = solver;
+  s.pcg_max_iterations = max_iterations;
+  s.rotated_factor_gauss_seidel = gauss_seidel;
+  s.time_step_s = 0.01;
+  s.rayleigh_mass_per_s = 1.0;
+  s.rayleigh_stiffness_s = 0.01;
+  return s;
+}
+
 struct SinusoidalPull {
   std::vector<int> nodes;     ///< the force is shared equally among these
   double amplitude_N = 0.0;   ///< summed over the nodes, times direction
