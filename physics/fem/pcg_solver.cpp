@@ -280,7 +280,7 @@ PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen:
     r -= alpha * q;
     result.iterations = it;
     r_norm = r.norm();
-    if (r_norm <= target) break;
+    if (r_norm <= target || it == max_iterations) break;  // capped: no application for nothing
     preconditioner(r, z);
     const double rz_next = r.dot(z);
     if (lanczos_steps <= kPcgSpectrumIterations - 1) betas[lanczos_steps - 1] = rz_next / rz;
