@@ -529,7 +529,7 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
     report->relative_residual = r.relative_residual;
     report->solver_spectrum = r.spectrum;
   }
-  return du.allFinite();
+  return !r.breakdown && du.allFinite();
 }
 
 StepReport FemBody::Step() {
@@ -618,9 +618,11 @@ StepReport FemBody::Step() {
   Eigen::VectorXd du;
   const bool solved = SolveSystem(rhs, du, s.pcg_relative_tolerance, s.pcg_max_iterations, &report);
   w.warm_start_from_pass = false;  // consumed by this solve, or stale
-  if (!solved)
-    return reject(rhs.allFinite() ? "the linear solve failed (system not positive definite or non-finite)"
-                                  : "non-finite right-hand side");
+  if (!solved) {
+    if (!rhs.allFinite()) return reject("non-finite right-hand side");
+    if (!std::isfinite(rhs.norm())) return reject("right-hand side too large (its norm overflows)");
+    return reject("the linear solve failed (system not positive definite or non-finite)");
+  }
   Eigen::VectorXd v_next, a_next;
   IntegratorUpdate(s, du, v, state_.acceleration_m_per_s2, v_next, a_next);
   if (!v_next.allFinite() || !a_next.allFinite()) return reject("non-finite velocity or acceleration");

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <span>
 
 #include "physics/fem/block_rows_simd.h"
@@ -243,6 +244,11 @@ PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen:
                    const Eigen::VectorXd* initial_product, Eigen::VectorXd* final_product) {
   PcgResult result;
   const double b_norm = b.norm();
+  if (!std::isfinite(b_norm)) {  // every residual test would pass against an infinite target
+    result.relative_residual = std::numeric_limits<double>::quiet_NaN();
+    result.breakdown = true;
+    return result;
+  }
   if (b_norm == 0.0) {
     x.setZero(b.size());
     if (final_product) final_product->setZero(b.size());
@@ -273,7 +279,10 @@ PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen:
   for (int it = 1; it <= max_iterations; ++it) {
     apply(p, q);
     const double pq = p.dot(q);
-    if (!(pq > 0.0)) break;  // not positive definite along p (or NaN): stop, caller checks
+    if (!(pq > 0.0)) {  // not positive definite along p (or NaN): stop, caller checks
+      result.breakdown = true;
+      break;
+    }
     const double alpha = rz / pq;
     if (lanczos_steps < kPcgSpectrumIterations) alphas[lanczos_steps++] = alpha;
     x += alpha * p;

@@ -16,6 +16,10 @@ struct PcgResult {
   int iterations = 0;
   double relative_residual = 0.0;  ///< |b - A x| / |b| at exit (0 when b = 0)
   bool converged = false;
+  /// The solve could not go on: |b| not finite (overflowing or NaN), or p.A p <= 0 or NaN along a
+  /// search direction (A or the preconditioner not positive definite, or the iterates overflowed).
+  /// x is then not a solution to accept, however many iterations the caller allows.
+  bool breakdown = false;
   /// Extreme eigenvalues of P^-1 A from this solve's first kPcgSpectrumIterations iterations
   /// ({0, 0} without an iteration): how well the preconditioner fits, and so the iteration count.
   SpectrumEstimate spectrum;

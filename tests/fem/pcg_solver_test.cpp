@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 
 #include "physics/fem/block_rows_simd.h"
 #include "physics/fem/elastic_forces.h"
@@ -331,6 +332,40 @@ TEST(PcgSolverTest, EveryPreconditionerApplicationIsUsedByAnIteration) {
   EXPECT_TRUE(converged.converged);
   EXPECT_GT(converged.iterations, 3);
   EXPECT_EQ(applications, converged.iterations);
+}
+
+TEST(PcgSolverTest, OverflowingOrIndefiniteInputIsABreakdownNotAConvergedSolve) {
+  const SmallSystem sys = MakeSystem();
+  BlockJacobiPreconditioner jacobi;
+  jacobi.Compute(sys.model.pattern, sys.values);
+  const Preconditioner pre = [&](const Eigen::VectorXd& res, Eigen::VectorXd& z) { jacobi.Apply(res, z); };
+  const MatrixOperator apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+    SymmetricPatternMultiply(sys.model.pattern, sys.values, in, out);
+  };
+  // |b| overflows although every entry is finite: a target of tol |b| = inf would pass any x.
+  const Eigen::VectorXd huge = Eigen::VectorXd::Constant(sys.model.num_dofs(), 1e200);
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(huge.size());
+  const PcgResult overflow = SolvePcg(apply, huge, x, pre, 1e-8, 20);
+  EXPECT_TRUE(overflow.breakdown);
+  EXPECT_FALSE(overflow.converged);
+  EXPECT_TRUE(std::isnan(overflow.relative_residual));
+  EXPECT_EQ(overflow.iterations, 0);
+  // A = -(SPD): p.A p < 0 on the first direction.
+  const MatrixOperator negative = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
+    apply(in, out);
+    out = -out;
+  };
+  const Eigen::VectorXd b = TestVector(sys.model.num_dofs());
+  Eigen::VectorXd y;
+  const PcgResult indefinite = SolvePcg(negative, b, y, pre, 1e-8, 20);
+  EXPECT_TRUE(indefinite.breakdown);
+  EXPECT_FALSE(indefinite.converged);
+  EXPECT_EQ(indefinite.iterations, 0);
+  // A sane solve is no breakdown.
+  Eigen::VectorXd z;
+  const PcgResult sane = SolvePcg(apply, b, z, pre, 1e-8, 1000);
+  EXPECT_TRUE(sane.converged);
+  EXPECT_FALSE(sane.breakdown);
 }
 
 }  // namespace
