@@ -32,8 +32,13 @@ FemModel BuildFemModel(const TetrahedralMesh& mesh, const FemSettings& settings,
   ValidateSettings(settings);
   const std::string& name = settings.body_name;
   if (mesh.num_tets() == 0) throw FemError(name + ": mesh has no tetrahedra");
-  // Names the body and the tet: "<body>: tetrahedron 17: inverted ...".
-  ValidateTetrahedralMesh(mesh, name);
+  // Names the body and the tet: "<body>: tetrahedron 17: is inverted ...", thrown as the FemError
+  // every FEM entry point throws for bad input.
+  try {
+    ValidateTetrahedralMesh(mesh, name);
+  } catch (const MeshError& e) {
+    throw FemError(e.what());
+  }
 
   FemModel m;
   m.settings = settings;

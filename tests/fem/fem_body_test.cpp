@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "physics/fem/elastic_forces.h"
 #include "physics/fem/fem_error.h"
@@ -774,6 +775,35 @@ TEST(FemBodyTest, DivergentStepIsRolledBackAndReported) {
       }
 }
 
+// The energy bound itself, with every value finite: Newmark's average acceleration keeps an
+// undamped linear mode's energy to rounding, so a bound below 1x the energy before must reject the
+// step (named, state kept) and one above 1x must pass it.
+TEST(FemBodyTest, StepWhoseEnergyExceedsTheBoundIsRolledBackAndReported) {
+  const ModalBlock b = MakeModalBlock(TimeIntegrator::kNewmark, 20.0);
+  const double amplitude = 1e-3;
+  const double energy0 = 0.5 * b.omega * b.omega * amplitude * amplitude;
+  for (double growth : {0.999, 1.001}) {
+    SCOPED_TRACE(::testing::Message() << "max_energy_growth " << growth);
+    auto model = std::make_shared<FemModel>(*b.model);
+    model->settings.max_energy_growth = growth;
+    model->settings.energy_floor_J = 0.0;
+    FemBody body(model);
+    body.SetState(amplitude * b.mode, Eigen::VectorXd::Zero(model->num_dofs()));
+    const StepReport r = body.Step();
+    if (growth < 1.0) {
+      EXPECT_FALSE(r.accepted);
+      EXPECT_NE(r.rejection_reason.find("modal block: step 0 rolled back: energy jumped from"), std::string::npos)
+          << r.rejection_reason;
+      EXPECT_EQ(body.state().displacement_m, amplitude * b.mode);
+      EXPECT_EQ(body.state().steps, 0);
+    } else {
+      EXPECT_TRUE(r.accepted) << r.rejection_reason;
+      EXPECT_NEAR(r.energy_J, energy0, 1e-9 * energy0);
+      EXPECT_EQ(body.state().steps, 1);
+    }
+  }
+}
+
 TEST(FemBodyTest, NonFiniteOrMissizedInputIsRejectedAtTheDoor) {
   const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {4, 2, 2});
   FemSettings s;
@@ -791,6 +821,20 @@ TEST(FemBodyTest, NonFiniteOrMissizedInputIsRejectedAtTheDoor) {
         << e.what();
   }
   EXPECT_THROW(body.SetState(Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(3)), FemError);
+  // A non-finite state is refused whole: the body keeps the state it had.
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model->num_dofs());
+  Eigen::VectorXd v = zero;
+  v[13] = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd u = zero;
+  u[0] = 1e-3;
+  try {
+    body.SetState(u, v);
+    FAIL() << "expected FemError";
+  } catch (const FemError& e) {
+    EXPECT_NE(std::string(e.what()).find("gallbladder: velocity of node 4 (axis 1) is not finite"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(body.state().displacement_m, zero);
   EXPECT_THROW(body.Compliance({{mesh.num_tets(), {0.25, 0.25, 0.25, 0.25}}}), FemError);
 }
 
