@@ -161,18 +161,20 @@ TEST(FemBodyTest, CantileverFirstBendingFrequencyWithinFivePercentOfBeamTheory) 
   const double omega = M_PI / (crossings[1] - crossings[0]);  // half a period between crossings
   std::printf("cantilever %d cells through thickness: omega_1 %.5f rad/s, beam theory %.5f (ratio %.4f)\n", cells,
               omega, beam_omega, omega / beam_omega);
-  EXPECT_NEAR(omega / beam_omega, 1.0, 0.05);
+  // The issue asks for 5 %; 8 cells give 1.013 (linear tets are stiff in bending), so the bound is
+  // held at 3 %: a mass or stiffness off by 6 % would move omega by 3 % and fail.
+  EXPECT_NEAR(omega / beam_omega, 1.0, 0.03);
 }
 
 // A gallbladder-sized body (8 x 3 x 3 cm box: the pear-shaped .vtu mesh needs app/'s VTK reader,
 // not in the physics build) pulled at one node, then released: it must come back to rest, every
 // step accepted, its energy never above the work the pull did.
-double PullAndRelease(LinearSolverKind solver, int refresh_steps) {
+double PullAndRelease(LinearSolverKind solver, int refresh_steps, TimeIntegrator integrator) {
   const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {8, 3, 3});
   FemSettings s;
   s.body_name = "gallbladder";
   s.element_model = ElementModel::kCorotational;
-  s.integrator = TimeIntegrator::kBackwardEuler;
+  s.integrator = integrator;
   s.solver = solver;
   s.cholmod_refresh_steps = refresh_steps;
   s.material = {2300.0, 0.45, 1000.0};
@@ -196,6 +198,8 @@ double PullAndRelease(LinearSolverKind solver, int refresh_steps) {
     max_energy = std::max(max_energy, r.energy_J);
     max_lift = std::max(max_lift, body.state().displacement_m[3 * grasped + 2]);
     EXPECT_LE(r.energy_J, work * 1.05 + 1e-12) << "step " << step;
+    // The body's own energy, not only the step's second-order estimate of it.
+    EXPECT_LE(body.KineticEnergy() + body.ElasticEnergy(), work * 1.05 + 1e-12) << "step " << step;
   }
   EXPECT_GT(max_lift, 0.005);  // the pull really deformed it (more than 5 mm)
   EXPECT_GT(max_energy, 0.0);
@@ -205,11 +209,71 @@ double PullAndRelease(LinearSolverKind solver, int refresh_steps) {
 }
 
 TEST(FemBodyTest, GallbladderPulledAndReleasedComesToRestWithBoundedEnergy) {
-  const double exact = PullAndRelease(LinearSolverKind::kCholmod, 1);
-  // Refactorising every 5th step (the stale factor preconditions PCG) or plain PCG: same motion.
-  EXPECT_NEAR(PullAndRelease(LinearSolverKind::kCholmod, 5), exact, 1e-6 * exact);
-  EXPECT_NEAR(PullAndRelease(LinearSolverKind::kPcg, 1), exact, 1e-4 * exact);
-  EXPECT_NEAR(PullAndRelease(LinearSolverKind::kRotatedFactorPcg, 1), exact, 1e-6 * exact);
+  for (TimeIntegrator integrator : {TimeIntegrator::kBackwardEuler, TimeIntegrator::kNewmark}) {
+    SCOPED_TRACE(integrator == TimeIntegrator::kNewmark ? "Newmark" : "backward Euler");
+    const double exact = PullAndRelease(LinearSolverKind::kCholmod, 1, integrator);
+    // Refactorising every 5th step (the stale factor preconditions PCG) or plain PCG: same motion.
+    EXPECT_NEAR(PullAndRelease(LinearSolverKind::kCholmod, 5, integrator), exact, 1e-6 * exact);
+    EXPECT_NEAR(PullAndRelease(LinearSolverKind::kPcg, 1, integrator), exact, 1e-4 * exact);
+    EXPECT_NEAR(PullAndRelease(LinearSolverKind::kRotatedFactorPcg, 1, integrator), exact, 1e-6 * exact);
+  }
+}
+
+// A corotational body on CHOLMOD with a refresh interval N refactorises on its first step and
+// every Nth after it (a direct solve: no PCG iteration) and in between preconditions PCG with the
+// stale factor (iterations > 0, to the tolerance); a linear body never needs PCG.
+TEST(FemBodyTest, CholmodRefactorisesACorotationalBodyEveryNthStepAndPreconditionsBetween) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {8, 3, 3});
+  for (ElementModel element : {ElementModel::kCorotational, ElementModel::kLinear}) {
+    FemSettings s = GallbladderNewmarkSettings(LinearSolverKind::kCholmod);
+    s.element_model = element;
+    s.cholmod_refresh_steps = 4;
+    auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
+    FemBody body(model);
+    Eigen::VectorXd pull = Eigen::VectorXd::Zero(model->num_dofs());
+    pull.segment<3>(3 * (mesh.num_vertices() - 1)) = Eigen::Vector3d(0.05, 0.0, 0.1);
+    body.SetExternalForces(pull);
+    for (int step = 0; step < 12; ++step) {
+      const StepReport r = body.Step();
+      ASSERT_TRUE(r.accepted) << r.rejection_reason;
+      if (element == ElementModel::kLinear || step % 4 == 0) {
+        EXPECT_EQ(r.solver_iterations, 0) << "step " << step;
+        EXPECT_EQ(r.relative_residual, 0.0) << "step " << step;
+      } else {
+        EXPECT_GE(r.solver_iterations, 1) << "step " << step;
+        EXPECT_LE(r.relative_residual, s.pcg_relative_tolerance) << "step " << step;
+      }
+    }
+  }
+}
+
+// The paper's PCG starts from the last increment: a step of a steadily moving body takes fewer
+// iterations than the same step started from zero (a fresh body given the same state), and both
+// reach the same increment.
+TEST(FemBodyTest, PcgWarmStartFromTheLastIncrementSavesIterations) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {8, 3, 3});
+  FemSettings s;
+  s.body_name = "gallbladder";
+  s.solver = LinearSolverKind::kPcg;
+  s.integrator = TimeIntegrator::kBackwardEuler;  // no acceleration state: SetState copies it all
+  s.material = {2300.0, 0.45, 1000.0};
+  s.rayleigh_mass_per_s = 1.0;
+  s.pcg_relative_tolerance = 1e-10;
+  s.pcg_max_iterations = 1000;
+  auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
+  FemBody warm(model);
+  warm.SetExternalForces(model->GravityForces({0, 0, -9.81}));
+  for (int step = 0; step < 5; ++step) ASSERT_TRUE(warm.Step().accepted);
+  FemBody cold(model);
+  cold.SetExternalForces(warm.state().external_force_N);
+  cold.SetState(warm.state().displacement_m, warm.state().velocity_m_per_s);
+  const StepReport rw = warm.Step(), rc = cold.Step();
+  ASSERT_TRUE(rw.accepted && rc.accepted);
+  EXPECT_LE(rw.relative_residual, 1e-10);
+  EXPECT_LE(rc.relative_residual, 1e-10);
+  EXPECT_LT(rw.solver_iterations, rc.solver_iterations);
+  const Eigen::VectorXd& u = warm.state().displacement_m;
+  EXPECT_LT((u - cold.state().displacement_m).norm(), 1e-7 * u.norm());
 }
 
 // The rotated rest factor preconditions PCG on the true corotational system: driven to a tight
