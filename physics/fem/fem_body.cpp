@@ -413,6 +413,7 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
                          (!linear && !w.factor_matches_system && w.steps_since_factor + 1 >= s.cholmod_refresh_steps);
     if (refresh) {
       if (!w.cholmod.Factorize(m.pattern, w.system_values)) return false;
+      if (report) report->factorised = true;
       w.force_refactor = false;
       w.factor_matches_system = true;
       w.steps_since_factor = 0;
@@ -437,6 +438,7 @@ bool FemBody::SolveSystem(const Eigen::VectorXd& rhs, Eigen::VectorXd& du, doubl
       if (!factor->Factorize(m.pattern, rest_system, s.rotated_factor_single_precision,
                              s.rotated_factor_half_precision))
         return false;
+      if (report) report->factorised = true;
       w.rest_factor = std::move(factor);
       w.force_refactor = false;
     }

@@ -21,6 +21,7 @@ struct StepReport {
   bool accepted = false;           ///< false: the state was rolled back (left as before the step)
   int solver_iterations = 0;       ///< PCG iterations (0 for a direct CHOLMOD solve)
   double relative_residual = 0.0;  ///< PCG |b - S du| / |b|; 0 for a direct solve
+  bool factorised = false;         ///< this step factorised a system (CHOLMOD): the slow steps
   SpectrumEstimate solver_spectrum;  ///< PCG's estimate of P^-1 S's extreme eigenvalues ({0, 0}: none)
   double energy_J = 0.0;           ///< kinetic + elastic after the step (before it when rejected)
   std::string rejection_reason;    ///< names the body and what went wrong

@@ -266,7 +266,7 @@ TEST(FemBodyTest, InvertedTetsOfACrushedCornerTurnBackAndTheBodyComesToRest) {
 
 // A corotational body on CHOLMOD with a refresh interval N refactorises on its first step and
 // every Nth after it (a direct solve: no PCG iteration) and in between preconditions PCG with the
-// stale factor (iterations > 0, to the tolerance); a linear body never needs PCG.
+// stale factor (iterations > 0, to the tolerance); a linear body factorises once and never needs PCG.
 TEST(FemBodyTest, CholmodRefactorisesACorotationalBodyEveryNthStepAndPreconditionsBetween) {
   const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {8, 3, 3});
   for (ElementModel element : {ElementModel::kCorotational, ElementModel::kLinear}) {
@@ -281,6 +281,9 @@ TEST(FemBodyTest, CholmodRefactorisesACorotationalBodyEveryNthStepAndPreconditio
     for (int step = 0; step < 12; ++step) {
       const StepReport r = body.Step();
       ASSERT_TRUE(r.accepted) << r.rejection_reason;
+      // Factorised on the first step and, corotational, on every 4th; a linear body once only.
+      EXPECT_EQ(r.factorised, step == 0 || (element == ElementModel::kCorotational && step % 4 == 0))
+          << "step " << step;
       if (element == ElementModel::kLinear || step % 4 == 0) {
         EXPECT_EQ(r.solver_iterations, 0) << "step " << step;
         EXPECT_EQ(r.relative_residual, 0.0) << "step " << step;
