@@ -28,6 +28,14 @@ struct FemBody::Workspace {
   double elastic_energy = 0.0;
   bool system_assembled = false;  // S exists (for the last step, or the current state)
   bool acceleration_valid = false;
+  // The cumulative energy guard: the energy at the first step (or after SetState) and the external
+  // work since, plus what SetState's jumps added; a step may not take the energy past
+  // max_energy_growth times their sum (a per-step bound alone lets it grow geometrically).
+  double energy_reference_J = 0.0;
+  double energy_added_J = 0.0;
+  double last_energy_after_J = 0.0;  // the last accepted step's energy
+  bool energy_reference_set = false;
+  bool state_was_set = false;  // SetState since the last accepted step
   bool linear_system_built = false;  // a linear body's S is built once (and after attachment changes)
   AttachmentSprings attachment;
   Eigen::VectorXd last_increment;        // PCG warm start
@@ -92,6 +100,9 @@ FemBody::FemBody(FemBody&&) noexcept = default;
 FemBody& FemBody::operator=(FemBody&&) noexcept = default;
 
 namespace {
+// A constrained point's weights in its tet: beyond this it lies tens of tets away.
+constexpr double kMaxBarycentricWeight = 100.0;
+
 void CheckVector(const FemModel& m, const Eigen::VectorXd& x, const char* what) {
   const std::string& name = m.settings.body_name;
   if (x.size() != m.num_dofs()) {
@@ -122,6 +133,7 @@ void FemBody::SetState(const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
   state_.velocity_m_per_s = v;
   work_->acceleration_valid = false;
   work_->system_assembled = false;
+  work_->state_was_set = true;
 }
 
 void FemBody::SetAttachmentStiffness(const Eigen::VectorXd& stiffness, const Eigen::VectorXd& damping) {
@@ -563,7 +575,12 @@ StepReport FemBody::Step() {
   }
   AssembleSystem(u, pass_products.count > 0 ? &pass_products : nullptr);
   Eigen::VectorXd damping_v;
-  if (s.integrator == TimeIntegrator::kNewmark && !w.acceleration_valid) {
+  // A rejected step must leave the state as it was, the acceleration included: keep what it was
+  // if this step computes it (from equilibrium, Newmark's first step after SetState).
+  const bool acceleration_computed = s.integrator == TimeIntegrator::kNewmark && !w.acceleration_valid;
+  Eigen::VectorXd acceleration_before;
+  if (acceleration_computed) acceleration_before = state_.acceleration_m_per_s2;
+  if (acceleration_computed) {
     // Start from equilibrium M a = f_ext - f_int - D v, so Newmark's energy balance holds from step 1.
     DampingTimes(v, damping_v);
     const Eigen::VectorXd net = (f_ext - w.internal_force - damping_v).cwiseProduct(m.free_dofs);
@@ -601,7 +618,19 @@ StepReport FemBody::Step() {
 
   const double energy_before = KineticEnergy() + w.elastic_energy;
   report.energy_J = energy_before;
+  if (!w.energy_reference_set) {
+    w.energy_reference_J = energy_before;
+    w.energy_reference_set = true;
+  } else if (w.state_was_set) {  // SetState's jump counts as work done on the body
+    w.energy_added_J += std::max(0.0, energy_before - w.last_energy_after_J);
+    w.last_energy_after_J = energy_before;
+  }
+  w.state_was_set = false;
   auto reject = [&](const std::string& why) {
+    if (acceleration_computed) {
+      state_.acceleration_m_per_s2 = std::move(acceleration_before);
+      w.acceleration_valid = false;
+    }
     report.accepted = false;
     report.rejection_reason = s.body_name + ": step " + std::to_string(state_.steps) + " rolled back: " + why;
     w.last_increment.setZero();
@@ -638,7 +667,17 @@ StepReport FemBody::Step() {
     os << "energy jumped from " << energy_before << " J to " << energy_after << " J (external work " << work << " J)";
     return reject(os.str());
   }
+  const double energy_budget = w.energy_reference_J + w.energy_added_J + work;
+  if (energy_after > s.max_energy_growth * energy_budget + s.energy_floor_J) {
+    std::ostringstream os;
+    os << "energy grew to " << energy_after << " J, over " << s.max_energy_growth << " x the energy at the start ("
+       << w.energy_reference_J << " J) plus the work done on the body since (" << w.energy_added_J + work << " J)";
+    return reject(os.str());
+  }
+  if (!(state_.displacement_m + du).allFinite()) return reject("non-finite displacement");
 
+  w.energy_added_J += work;
+  w.last_energy_after_J = energy_after;
   state_.displacement_m += du;
   state_.velocity_m_per_s = std::move(v_next);
   state_.acceleration_m_per_s2 = std::move(a_next);
@@ -685,6 +724,14 @@ PointCompliance FemBody::Compliance(const std::vector<TetLocation>& points) {
          << m.rest_mesh.num_tets() << " tets) or has non-finite weights";
       throw FemError(os.str());
     }
+    // Barycentric: they sum to 1; slightly negative ones (a point just outside its tet,
+    // LocateInTetMesh) are fine, but a point far from its tet is a caller's mistake.
+    if (std::abs(loc.weights.sum() - 1.0) > 1e-6 || loc.weights.cwiseAbs().maxCoeff() > kMaxBarycentricWeight) {
+      std::ostringstream os;
+      os << m.settings.body_name << ": constrained point " << p << " has weights (" << loc.weights.transpose()
+         << ") in tet " << loc.tet << ": barycentric weights sum to 1 and stay within +-" << kMaxBarycentricWeight;
+      throw FemError(os.str());
+    }
     for (int k = 0; k < 4; ++k)
       for (int axis = 0; axis < 3; ++axis) {
         const int dof = 3 * m.rest_mesh.tets(loc.tet, k) + axis;
@@ -700,12 +747,13 @@ PointCompliance FemBody::Compliance(const std::vector<TetLocation>& points) {
     work_->extrapolation.Clear();
     // Accurate solves: the contact solver needs C itself, not a 20-iteration estimate.
     if (!SolveSystem(jt.col(j), x, 1e-12, 10 * n, nullptr))
-      throw FemError(m.settings.body_name + ": compliance solve failed (system not positive definite)");
+      throw FemError(m.settings.body_name + ": compliance solve failed (system not positive definite, or non-finite)");
     c.response.col(j) = x;
   }
   work_->last_increment.setZero();
   work_->extrapolation.Clear();
   c.delassus = jt.transpose() * c.response;
+  if (!c.delassus.allFinite()) throw FemError(m.settings.body_name + ": compliance is not finite");
   return c;
 }
 
