@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "physics/fem/fem_error.h"
 #include "physics/mesh/mesh_validation.h"
@@ -91,6 +93,15 @@ FemModel BuildFemModel(const TetrahedralMesh& mesh, const FemSettings& settings,
     for (int axis = 0; axis < 3; ++axis)
       if (f.axes[axis]) m.free_dofs[3 * f.node + axis] = 0.0;
   }
+  // A vertex no tet uses has no mass and no stiffness: unless it is held on every axis, the
+  // system is singular every step.
+  std::vector<char> used(static_cast<size_t>(n), 0);
+  for (int t = 0; t < mesh.num_tets(); ++t)
+    for (int a = 0; a < 4; ++a) used[static_cast<size_t>(mesh.tets(t, a))] = 1;
+  for (int v = 0; v < n; ++v)
+    if (!used[static_cast<size_t>(v)] && m.free_dofs.segment<3>(3 * v).any())
+      throw FemError(name + ": vertex " + std::to_string(v) +
+                     " belongs to no tetrahedron and is not fixed (it would have no mass and no stiffness)");
   for (int i = 0; i < 3 * n; ++i)
     if (m.free_dofs[i] == 0.0) m.fixed_dofs.push_back(i);
   const auto& s = m.pattern.structure;

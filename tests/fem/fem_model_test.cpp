@@ -158,6 +158,24 @@ TEST(FemModelTest, InvertedAndDegenerateTetsAreErrorsNamingBodyAndTet) {
       << message(collapsed);
 }
 
+// A vertex no tet uses has no mass and no stiffness: a singular system unless it is held.
+TEST(FemModelTest, VertexInNoTetIsAnErrorUnlessItIsHeld) {
+  TetrahedralMesh mesh = MakeBoxTetMesh({1, 1, 1}, {1, 1, 1});
+  mesh.vertices.conservativeResize(9, 3);
+  mesh.vertices.row(8) << 2.0, 2.0, 2.0;
+  FemSettings s;
+  s.body_name = "gallbladder";
+  try {
+    BuildFemModel(mesh, s, {{8, {true, true, false}}});
+    FAIL() << "expected FemError";
+  } catch (const FemError& e) {
+    EXPECT_NE(std::string(e.what()).find("gallbladder: vertex 8 belongs to no tetrahedron and is not fixed"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(BuildFemModel(mesh, s, {{8, {true, true, true}}}));
+}
+
 TEST(FemModelTest, FixedNodeOutOfRangeIsAnError) {
   FemSettings s;
   s.body_name = "gallbladder";

@@ -15,7 +15,8 @@
 namespace vesica::physics {
 namespace {
 
-// A box with one extra vertex in no tet: its diagonal block is in the pattern with no tet behind it.
+// A box with one extra vertex in no tet (held: a free one would have no mass and no stiffness): its
+// diagonal block is in the pattern with no tet behind it.
 TetrahedralMesh BoxWithIsolatedVertex() {
   TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {4, 2, 3});
   const Eigen::Index n = mesh.vertices.rows();
@@ -29,7 +30,7 @@ FemModel Model(const TetrahedralMesh& mesh, ElementKernel kernel) {
   s.material = {2300.0, 0.45, 1000.0};
   s.element_model = ElementModel::kCorotational;
   s.element_kernel = kernel;
-  return BuildFemModel(mesh, s, {});
+  return BuildFemModel(mesh, s, {{mesh.num_vertices() - 1, {true, true, true}}});
 }
 
 std::vector<ElementKernel> SimdKernelsOfThisCpu() {
