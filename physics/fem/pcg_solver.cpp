@@ -279,8 +279,9 @@ PcgResult SolvePcg(const MatrixOperator& apply, const Eigen::VectorXd& b, Eigen:
   for (int it = 1; it <= max_iterations; ++it) {
     apply(p, q);
     const double pq = p.dot(q);
-    if (!(pq > 0.0)) {  // not positive definite along p (or NaN): stop, caller checks
-      result.breakdown = true;
+    if (!(pq > 0.0)) {  // stop; p.A p < 0 (not positive definite) or NaN is a breakdown, while
+      // p.A p = 0 is p underflowing on a residual far below any tolerance: x is as good as it gets
+      result.breakdown = !(pq == 0.0);
       break;
     }
     const double alpha = rz / pq;

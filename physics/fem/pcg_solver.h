@@ -16,7 +16,7 @@ struct PcgResult {
   int iterations = 0;
   double relative_residual = 0.0;  ///< |b - A x| / |b| at exit (0 when b = 0)
   bool converged = false;
-  /// The solve could not go on: |b| not finite (overflowing or NaN), or p.A p <= 0 or NaN along a
+  /// The solve could not go on: |b| not finite (overflowing or NaN), or p.A p < 0 or NaN along a
   /// search direction (A or the preconditioner not positive definite, or the iterates overflowed).
   /// x is then not a solution to accept, however many iterations the caller allows.
   bool breakdown = false;

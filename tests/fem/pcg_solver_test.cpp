@@ -361,6 +361,15 @@ TEST(PcgSolverTest, OverflowingOrIndefiniteInputIsABreakdownNotAConvergedSolve) 
   EXPECT_TRUE(indefinite.breakdown);
   EXPECT_FALSE(indefinite.converged);
   EXPECT_EQ(indefinite.iterations, 0);
+  // A tolerance below what doubles can reach: the recursive residual falls until p.A p underflows
+  // to 0, which stops the solve with x as good as it gets; that is not a breakdown.
+  Eigen::VectorXd w;
+  const PcgResult underflow = SolvePcg(apply, b, w, pre, 1e-300, 100000);
+  EXPECT_FALSE(underflow.breakdown);
+  EXPECT_FALSE(underflow.converged);
+  EXPECT_LT(underflow.iterations, 100000);  // stopped by the underflow, not the cap
+  const Eigen::VectorXd exact = sys.dense.ldlt().solve(b);
+  EXPECT_LT((w - exact).norm(), 1e-10 * exact.norm());
   // A sane solve is no breakdown.
   Eigen::VectorXd z;
   const PcgResult sane = SolvePcg(apply, b, z, pre, 1e-8, 1000);
