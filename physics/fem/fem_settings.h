@@ -117,7 +117,9 @@ struct FemSettings {
   ElementKernel element_kernel = ElementKernel::kAuto;
 
   /// Divergence guard: a step is rejected when its energy exceeds this factor times (energy
-  /// before + |work of external forces|) plus energy_floor_J.
+  /// before + |work of external forces|) plus energy_floor_J, or this factor times (the energy at
+  /// the body's first step + the |work| done on it since, SetState's jumps included) plus
+  /// energy_floor_J: the second bound stops energy pumped up a little every step.
   double max_energy_growth = 10.0;
   double energy_floor_J = 1e-12;
 };
