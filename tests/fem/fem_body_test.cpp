@@ -169,19 +169,26 @@ TEST(FemBodyTest, CantileverFirstBendingFrequencyWithinThreePercentOfBeamTheory)
 // A gallbladder-sized body (8 x 3 x 3 cm box: the pear-shaped .vtu mesh needs app/'s VTK reader,
 // not in the physics build) pulled at one node, then released: it must come back to rest, every
 // step accepted, its energy never above the work the pull did.
-double PullAndRelease(LinearSolverKind solver, int refresh_steps, TimeIntegrator integrator) {
-  const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {8, 3, 3});
+// The gallbladder's material, corotational, h = 5 ms, damped so that a released body comes to rest
+// within a few seconds.
+FemSettings DampedGallbladderSettings(LinearSolverKind solver, TimeIntegrator integrator) {
   FemSettings s;
   s.body_name = "gallbladder";
   s.element_model = ElementModel::kCorotational;
   s.integrator = integrator;
   s.solver = solver;
-  s.cholmod_refresh_steps = refresh_steps;
   s.material = {2300.0, 0.45, 1000.0};
   s.time_step_s = 0.005;
   s.rayleigh_mass_per_s = 10.0;  // 1/s: the energy decays about as exp(-10 t)
   s.rayleigh_stiffness_s = 0.01;
   s.pcg_max_iterations = 100;
+  return s;
+}
+
+double PullAndRelease(LinearSolverKind solver, int refresh_steps, TimeIntegrator integrator) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {8, 3, 3});
+  FemSettings s = DampedGallbladderSettings(solver, integrator);
+  s.cholmod_refresh_steps = refresh_steps;
   auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
   FemBody body(model);
   const int grasped = mesh.num_vertices() - 1;  // corner at the free end
@@ -228,16 +235,7 @@ TEST(FemBodyTest, InvertedTetsOfACrushedCornerTurnBackAndTheBodyComesToRest) {
   const int corner = mesh.num_vertices() - 1;  // (0.08, 0.03, 0.03)
   for (LinearSolverKind solver : {LinearSolverKind::kCholmod, LinearSolverKind::kRotatedFactorPcg}) {
     SCOPED_TRACE(solver == LinearSolverKind::kCholmod ? "CHOLMOD" : "rotated factor PCG");
-    FemSettings s;
-    s.body_name = "gallbladder";
-    s.element_model = ElementModel::kCorotational;
-    s.integrator = TimeIntegrator::kBackwardEuler;
-    s.solver = solver;
-    s.material = {2300.0, 0.45, 1000.0};
-    s.time_step_s = 0.005;
-    s.rayleigh_mass_per_s = 10.0;
-    s.rayleigh_stiffness_s = 0.01;
-    s.pcg_max_iterations = 200;
+    const FemSettings s = DampedGallbladderSettings(solver, TimeIntegrator::kBackwardEuler);
     auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
     FemBody body(model);
     Eigen::VectorXd u = Eigen::VectorXd::Zero(model->num_dofs());
