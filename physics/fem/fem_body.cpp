@@ -28,9 +28,10 @@ struct FemBody::Workspace {
   double elastic_energy = 0.0;
   bool system_assembled = false;  // S exists (for the last step, or the current state)
   bool acceleration_valid = false;
-  // The cumulative energy guard: the energy at the first step (or after SetState) and the external
-  // work since, plus what SetState's jumps added; a step may not take the energy past
-  // max_energy_growth times their sum (a per-step bound alone lets it grow geometrically).
+  // The cumulative energy guard: the energy at the body's first step, and the work done on it since
+  // (the external forces' in accepted steps, and the energy SetState's jumps added); a step may not
+  // take the energy past max_energy_growth times their sum (a per-step bound alone lets it grow
+  // geometrically).
   double energy_reference_J = 0.0;
   double energy_added_J = 0.0;
   double last_energy_after_J = 0.0;  // the last accepted step's energy
@@ -579,8 +580,8 @@ StepReport FemBody::Step() {
   // if this step computes it (from equilibrium, Newmark's first step after SetState).
   const bool acceleration_computed = s.integrator == TimeIntegrator::kNewmark && !w.acceleration_valid;
   Eigen::VectorXd acceleration_before;
-  if (acceleration_computed) acceleration_before = state_.acceleration_m_per_s2;
   if (acceleration_computed) {
+    acceleration_before = state_.acceleration_m_per_s2;
     // Start from equilibrium M a = f_ext - f_int - D v, so Newmark's energy balance holds from step 1.
     DampingTimes(v, damping_v);
     const Eigen::VectorXd net = (f_ext - w.internal_force - damping_v).cwiseProduct(m.free_dofs);
