@@ -36,7 +36,7 @@ struct FemBody::Workspace {
   double energy_added_J = 0.0;
   double last_energy_after_J = 0.0;  // the last accepted step's energy
   bool energy_reference_set = false;
-  bool state_was_set = false;  // SetState since the last accepted step
+  bool state_was_set = false;        // SetState since the last accepted step
   bool linear_system_built = false;  // a linear body's S is built once (and after attachment changes)
   AttachmentSprings attachment;
   Eigen::VectorXd last_increment;        // PCG warm start
@@ -47,9 +47,9 @@ struct FemBody::Workspace {
   // free part's K_t product, and the Newmark damping drive's.
   Eigen::VectorXd pass_warm_start, pass_warm_start_free, pass_warm_start_product, damping_drive_product;
   bool warm_start_from_pass = false;
-  Eigen::VectorXd solution_product;      // S du after a kRotatedFactorPcg solve (b - r)
+  Eigen::VectorXd solution_product;  // S du after a kRotatedFactorPcg solve (b - r)
   bool solution_product_valid = false;
-  std::vector<Eigen::Vector4d> rotations;  // corotational warm start, per tet
+  std::vector<Eigen::Vector4d> rotations;   // corotational warm start, per tet
   HugePageVector<double> turned_gradients;  // R grad N per tet from the last matrix-free pass
   BlockJacobiPreconditioner jacobi;
   FloatBlockRows float_rows;  // settings.rotated_factor_float_sweeps: the sweeps' copy of S
