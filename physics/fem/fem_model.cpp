@@ -6,9 +6,42 @@
 #include <vector>
 
 #include "physics/fem/fem_error.h"
+#include "physics/fem/time_integrator.h"
 #include "physics/mesh/mesh_validation.h"
 
 namespace vesica::physics {
+namespace {
+
+// The step's system S = c_M M + c_D D + K_t must stay within the range its solver computes in, or
+// every step fails (a non-finite product, a norm that overflows): such settings are refused here,
+// naming the setting whose term breaks the bound. The rotated-factor solver keeps S's rows and the
+// factor in float (FLT_MAX 3.4e38, and the sweeps' block inverses must not underflow); the double
+// solvers square norms of S's products (|b|^2 overflows past 1e154).
+constexpr double kMaxFloatSystemEntry = 1e35;
+constexpr double kMaxDoubleSystemEntry = 1e150;
+
+void CheckSystemScale(const FemModel& m) {
+  const FemSettings& s = m.settings;
+  const SystemCoefficients c = IntegratorCoefficients(s);
+  const double mass_max = m.lumped_mass_kg.maxCoeff();
+  const double stiffness_max = m.linear_stiffness_values.cwiseAbs().maxCoeff();
+  const bool float_arrays = s.solver == LinearSolverKind::kRotatedFactorPcg;
+  const double bound = float_arrays ? kMaxFloatSystemEntry : kMaxDoubleSystemEntry;
+  auto check = [&](double entry, const char* kind, const char* field, double value) {
+    if (entry <= bound) return;  // NaN fails too
+    std::ostringstream os;
+    os << s.body_name << ": " << kind << " " << field << " = " << value
+       << " makes the step's system overflow (its entries reach " << entry << "; this solver needs them below " << bound
+       << ")";
+    throw FemError(os.str());
+  };
+  check(c.mass * mass_max, "setting", "time_step_s", s.time_step_s);
+  check(stiffness_max, "material", "youngs_modulus_Pa", s.material.youngs_modulus_Pa);
+  check(c.damping * s.rayleigh_mass_per_s * mass_max, "setting", "rayleigh_mass_per_s", s.rayleigh_mass_per_s);
+  check(c.damping * s.rayleigh_stiffness_s * stiffness_max, "setting", "rayleigh_stiffness_s", s.rayleigh_stiffness_s);
+}
+
+}  // namespace
 
 Eigen::Map<const Eigen::SparseMatrix<double>> PatternMatrix(const SparsePattern& p, const Eigen::VectorXd& values) {
   const auto& s = p.structure;
@@ -76,6 +109,8 @@ FemModel BuildFemModel(const TetrahedralMesh& mesh, const FemSettings& settings,
       }
     }
   }
+
+  CheckSystemScale(m);
 
   m.element_batches = BuildElementBatches(mesh, m.elements);
   // A matrix-free body never assembles its tangent (ComputeElasticForces asked for one anyway takes

@@ -22,6 +22,13 @@ void ValidateSettings(const FemSettings& s) {
         s.rayleigh_stiffness_s, ">= 0");
   check(s.newmark_beta > 0.0 && s.newmark_beta <= 0.5, "newmark_beta", s.newmark_beta, "0 < beta <= 0.5");
   check(s.newmark_gamma >= 0.5 && s.newmark_gamma <= 1.0, "newmark_gamma", s.newmark_gamma, "0.5 <= gamma <= 1");
+  // 2 beta < gamma is stable only for omega h below a bound, and a tet mesh's stiffest modes are
+  // far beyond any usable h: every step would diverge and be rejected.
+  if (s.integrator == TimeIntegrator::kNewmark && 2.0 * s.newmark_beta < s.newmark_gamma) {
+    std::ostringstream range;
+    range << "2 beta >= gamma = " << s.newmark_gamma << ": otherwise only conditionally stable";
+    check(false, "newmark_beta", s.newmark_beta, range.str().c_str());
+  }
   check(s.pcg_relative_tolerance > 0.0 && s.pcg_relative_tolerance < 1.0, "pcg_relative_tolerance",
         s.pcg_relative_tolerance, "0 < tol < 1");
   check(s.pcg_max_iterations >= 1, "pcg_max_iterations", s.pcg_max_iterations, ">= 1");

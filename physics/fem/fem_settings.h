@@ -49,7 +49,7 @@ struct FemSettings {
   double time_step_s = 1e-2;          ///< h, s; > 0
   double rayleigh_mass_per_s = 0.0;   ///< alpha in D = alpha M + beta K, 1/s; >= 0
   double rayleigh_stiffness_s = 0.0;  ///< beta in D = alpha M + beta K, s; >= 0
-  double newmark_beta = 0.25;         ///< 0 < beta <= 0.5
+  double newmark_beta = 0.25;         ///< 0 < beta <= 0.5, and 2 beta >= gamma (unconditionally stable)
   double newmark_gamma = 0.5;         ///< 0.5 <= gamma <= 1
 
   double pcg_relative_tolerance = 1e-8;  ///< stop when |r| <= tol |b| (paper: 1e-8)
@@ -125,6 +125,7 @@ struct FemSettings {
 };
 
 /// Throws FemError naming the body and the field for out-of-range settings (material included).
+/// BuildFemModel also refuses settings whose step system overflows its solver's range.
 void ValidateSettings(const FemSettings& settings);
 
 /// True when a body with these settings applies its tangent (and S) element by element in its

@@ -130,6 +130,76 @@ TEST(FemModelTest, BadMaterialIsAnErrorNamingBodyAndField) {
       << message(s);
 }
 
+// Settings every step would fail with are refused when the body is built, naming the setting
+// (each case below stepped a 4 x 4 x 4-cell box under gravity without these checks: the Newmark
+// ones diverged after 7 and 15 accepted steps, the overflowing ones failed every step).
+// Newmark with 2 beta < gamma is only conditionally stable, and a tet mesh's stiffest modes are
+// beyond any usable h. A step so short, or a damping so stiff, that the step's system leaves the
+// range its solver computes in (float for the rotated factor, double otherwise) leaves nothing
+// to solve.
+TEST(FemModelTest, SettingsNoStepCouldSurviveAreErrorsNamingTheSetting) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({0.01, 0.01, 0.01}, {4, 4, 4});
+  auto message = [&](const FemSettings& s) {
+    try {
+      BuildFemModel(mesh, s, {});
+    } catch (const FemError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  FemSettings s;
+  s.body_name = "gallbladder";
+  s.integrator = TimeIntegrator::kNewmark;
+  s.newmark_beta = 1.0 / 6.0;  // the linear-acceleration method: stable only for omega h < 3.46
+  EXPECT_NE(message(s).find("gallbladder: setting newmark_beta = 0.166667 is out of range (2 beta >= gamma = 0.5"),
+            std::string::npos)
+      << message(s);
+  s.newmark_beta = 0.25;
+  s.newmark_gamma = 0.6;
+  EXPECT_NE(message(s).find("gallbladder: setting newmark_beta = 0.25 is out of range (2 beta >= gamma = 0.6"),
+            std::string::npos)
+      << message(s);
+  s.newmark_beta = 0.3025;  // (gamma + 1/2)^2 / 4: numerically damped and unconditionally stable
+  EXPECT_EQ(message(s), "no error");
+  s.integrator = TimeIntegrator::kBackwardEuler;  // Newmark's parameters are not used
+  s.newmark_beta = 1.0 / 6.0;
+  EXPECT_EQ(message(s), "no error");
+
+  s.newmark_beta = 0.25;
+  s.newmark_gamma = 0.5;
+  s.time_step_s = 0.005;
+  for (TimeIntegrator integrator : {TimeIntegrator::kBackwardEuler, TimeIntegrator::kNewmark}) {
+    s.integrator = integrator;
+    for (LinearSolverKind solver : {LinearSolverKind::kCholmod, LinearSolverKind::kRotatedFactorPcg}) {
+      s.solver = solver;
+      const bool float_arrays = solver == LinearSolverKind::kRotatedFactorPcg;
+      s.time_step_s = 1e-300;  // M / h^2 is infinite
+      EXPECT_NE(message(s).find("gallbladder: setting time_step_s = 1e-300 makes the step's system overflow"),
+                std::string::npos)
+          << message(s);
+      s.time_step_s = 1e-19;  // entries up to 6e33: these steps still succeed, in float too
+      EXPECT_EQ(message(s), "no error");
+      s.time_step_s = 1e308;  // M / h^2 underflows: backward Euler becomes statics, which the fixed nodes allow
+      EXPECT_EQ(message(s), "no error");
+      s.time_step_s = 0.005;
+      s.rayleigh_stiffness_s = 1e40;  // entries up to 2e44: beyond float, within double
+      if (float_arrays)
+        EXPECT_NE(message(s).find("gallbladder: setting rayleigh_stiffness_s = 1e+40 makes the step's system overflow"),
+                  std::string::npos)
+            << message(s);
+      else
+        EXPECT_EQ(message(s), "no error");
+      s.rayleigh_stiffness_s = 0.1;
+      s.rayleigh_mass_per_s = 1e300;  // entries up to 6e297: |b|^2 overflows
+      EXPECT_NE(message(s).find("gallbladder: setting rayleigh_mass_per_s = 1e+300 makes the step's system overflow"),
+                std::string::npos)
+          << message(s);
+      s.rayleigh_mass_per_s = 0.1;
+      EXPECT_EQ(message(s), "no error");
+    }
+  }
+}
+
 TEST(FemModelTest, InvertedAndDegenerateTetsAreErrorsNamingBodyAndTet) {
   auto message = [](const TetrahedralMesh& mesh) {
     FemSettings s;
