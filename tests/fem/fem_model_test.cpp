@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <limits>
+#include <string>
 
 #include "physics/fem/elastic_forces.h"
 #include "physics/fem/fem_error.h"
@@ -21,6 +22,17 @@ FemModel UnitBlock(MassModel mass) {
 
 Eigen::MatrixXd Dense(const FemModel& m, const Eigen::VectorXd& values) {
   return Eigen::MatrixXd(PatternMatrix(m.pattern, values));
+}
+
+// What BuildFemModel throws for this mesh and these settings (the FEM's own error type, not the
+// mesh module's), or "no error".
+std::string BuildError(const TetrahedralMesh& mesh, const FemSettings& s) {
+  try {
+    BuildFemModel(mesh, s, {});
+  } catch (const FemError& e) {
+    return e.what();
+  }
+  return "no error";
 }
 
 TEST(FemModelTest, StiffnessIsSymmetricWithRigidModesInItsNullSpace) {
@@ -84,14 +96,7 @@ TEST(FemModelTest, ConsistentMassOfOneTetIsRhoVOverTwentyTimesOnePlusDelta) {
 
 TEST(FemModelTest, BadMaterialIsAnErrorNamingBodyAndField) {
   const TetrahedralMesh mesh = MakeBoxTetMesh({1, 1, 1}, {1, 1, 1});
-  auto message = [&](const FemSettings& s) {
-    try {
-      BuildFemModel(mesh, s, {});
-    } catch (const FemError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto message = [&](const FemSettings& s) { return BuildError(mesh, s); };
   FemSettings s;
   s.body_name = "gallbladder";
   s.material.poisson_ratio = 0.5;
@@ -139,14 +144,7 @@ TEST(FemModelTest, BadMaterialIsAnErrorNamingBodyAndField) {
 // to solve.
 TEST(FemModelTest, SettingsNoStepCouldSurviveAreErrorsNamingTheSetting) {
   const TetrahedralMesh mesh = MakeBoxTetMesh({0.01, 0.01, 0.01}, {4, 4, 4});
-  auto message = [&](const FemSettings& s) {
-    try {
-      BuildFemModel(mesh, s, {});
-    } catch (const FemError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto message = [&](const FemSettings& s) { return BuildError(mesh, s); };
   FemSettings s;
   s.body_name = "gallbladder";
   s.integrator = TimeIntegrator::kNewmark;
@@ -204,12 +202,7 @@ TEST(FemModelTest, InvertedAndDegenerateTetsAreErrorsNamingBodyAndTet) {
   auto message = [](const TetrahedralMesh& mesh) {
     FemSettings s;
     s.body_name = "gallbladder";
-    try {
-      BuildFemModel(mesh, s, {});
-    } catch (const FemError& e) {  // the FEM's own error type, not the mesh module's
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return BuildError(mesh, s);
   };
   TetrahedralMesh inverted = MakeBoxTetMesh({1, 1, 1}, {2, 1, 1});
   std::swap(inverted.tets(4, 1), inverted.tets(4, 2));  // tet 4 alone now has negative volume
