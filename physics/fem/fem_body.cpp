@@ -676,6 +676,7 @@ StepReport FemBody::Step() {
     return reject(os.str());
   }
   if (!(state_.displacement_m + du).allFinite()) return reject("non-finite displacement");
+  if (!std::isfinite(state_.time_s + s.time_step_s)) return reject("the simulation time overflows");
 
   w.energy_added_J += work;
   w.last_energy_after_J = energy_after;

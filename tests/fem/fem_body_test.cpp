@@ -986,6 +986,30 @@ TEST(FemBodyTest, StepWhoseDisplacementWouldOverflowIsRolledBack) {
   EXPECT_EQ(body.state().displacement_m, u);
 }
 
+// Backward Euler with a step this long is statics (the mass term vanishes), which the clamped
+// face allows; but the second step would take the simulation time past the doubles: it is rolled
+// back, and time_s stays finite like the rest of the state.
+TEST(FemBodyTest, StepWhoseTimeWouldOverflowIsRolledBack) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {4, 2, 2});
+  FemSettings s;
+  s.body_name = "gallbladder";
+  s.time_step_s = 1e308;
+  auto model = std::make_shared<FemModel>(BuildFemModel(mesh, s, Clamp(NodesOnPlane(mesh, 0, 0.0))));
+  FemBody body(model);
+  body.SetExternalForces(model->GravityForces({0.0, 0.0, -9.81}));
+  ASSERT_TRUE(body.Step().accepted);
+  EXPECT_EQ(body.state().time_s, 1e308);
+  const Eigen::VectorXd u = body.state().displacement_m;
+  EXPECT_LT(u.minCoeff(), 0.0);  // it sagged
+  const StepReport r = body.Step();
+  EXPECT_FALSE(r.accepted);
+  EXPECT_NE(r.rejection_reason.find("gallbladder: step 1 rolled back: the simulation time overflows"),
+            std::string::npos)
+      << r.rejection_reason;
+  EXPECT_EQ(body.state().time_s, 1e308);
+  EXPECT_EQ(body.state().displacement_m, u);
+}
+
 TEST(FemBodyTest, NonFiniteOrMissizedInputIsRejectedAtTheDoor) {
   const TetrahedralMesh mesh = MakeBoxTetMesh({0.08, 0.03, 0.03}, {4, 2, 2});
   FemSettings s;
