@@ -14,9 +14,10 @@ namespace {
 
 // The step's system S = c_M M + c_D D + K_t must stay within the range its solver computes in, or
 // every step fails (a non-finite product, a norm that overflows): such settings are refused here,
-// naming the setting whose term breaks the bound. The rotated-factor solver keeps S's rows and the
-// factor in float (FLT_MAX 3.4e38, and the sweeps' block inverses must not underflow); the double
-// solvers square norms of S's products (|b|^2 overflows past 1e154).
+// naming the setting whose term breaks the bound. The rotated-factor solver keeps its factor and
+// the sweeps' rows of S in float unless told otherwise (FLT_MAX 3.4e38, and the sweeps' block
+// inverses must not underflow); the double solvers square norms of S's products (|b|^2 overflows
+// past 1e154).
 constexpr double kMaxFloatSystemEntry = 1e35;
 constexpr double kMaxDoubleSystemEntry = 1e150;
 
@@ -25,7 +26,9 @@ void CheckSystemScale(const FemModel& m) {
   const SystemCoefficients c = IntegratorCoefficients(s);
   const double mass_max = m.lumped_mass_kg.maxCoeff();
   const double stiffness_max = m.linear_stiffness_values.cwiseAbs().maxCoeff();
-  const bool float_arrays = s.solver == LinearSolverKind::kRotatedFactorPcg;
+  const bool float_arrays =
+      s.solver == LinearSolverKind::kRotatedFactorPcg &&
+      (s.rotated_factor_single_precision || (s.rotated_factor_gauss_seidel && s.rotated_factor_float_sweeps));
   const double bound = float_arrays ? kMaxFloatSystemEntry : kMaxDoubleSystemEntry;
   auto check = [&](double entry, const char* kind, const char* field, double value) {
     if (entry <= bound) return;  // NaN fails too
