@@ -58,6 +58,7 @@ struct TransportStats {
   std::uint64_t rx_dropped = 0;      // receive overflow
   std::uint64_t error_frames = 0;
   std::uint64_t malformed = 0;       // undecodable transport packets (UDP), counted not crashed
+  std::uint64_t foreign = 0;         // datagrams from other than the configured peer (UDP), dropped
 };
 
 class Transport {

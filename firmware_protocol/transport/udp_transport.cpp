@@ -107,11 +107,22 @@ SendStatus UdpTransport::send(const CanFrame& frame, Nanoseconds deadline) {
 
 void UdpTransport::drain_socket() {
   std::uint8_t packet[2048];
+  sockaddr_in peer;
+  std::memcpy(&peer, remote_, sizeof peer);
   for (;;) {
-    const ssize_t n = ::recv(fd_, packet, sizeof packet, 0);
+    sockaddr_in from{};
+    socklen_t from_len = sizeof from;
+    const ssize_t n = ::recvfrom(fd_, packet, sizeof packet, 0, reinterpret_cast<sockaddr*>(&from), &from_len);
     if (n < 0) {
       if (errno == EINTR) continue;
       return;  // EAGAIN: empty; ECONNREFUSED from an earlier send: ignore
+    }
+    // Only the configured peer speaks on this link: anything else on the port (a stray tool, a
+    // second emulator, a spoofer) would inject torque commands or joint states. Dropped, counted.
+    if (from_len != sizeof from || from.sin_family != AF_INET || from.sin_addr.s_addr != peer.sin_addr.s_addr ||
+        from.sin_port != peer.sin_port) {
+      ++stats_.foreign;
+      continue;
     }
     const Nanoseconds t = now();
     std::uint8_t seq = 0;

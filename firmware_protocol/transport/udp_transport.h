@@ -4,7 +4,8 @@
 //   auto t = UdpTransport::open({.local_port = 20000, .remote_port = 20001});   // 127.0.0.1 default
 //   if (!t) log(t.error_text());  then use it as a Transport.
 // Lost datagrams show up as RxOverflow events (sequence-number gaps); malformed packets are counted
-// in stats().malformed and dropped.
+// in stats().malformed and dropped. Only datagrams from the configured remote address and port are
+// accepted; others are counted in stats().foreign and dropped.
 #pragma once
 
 #include <cstdint>

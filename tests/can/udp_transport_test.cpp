@@ -96,21 +96,45 @@ TEST(UdpTransportTest, FramesCrossLoopbackBothWaysWithTimestamps) {
   EXPECT_EQ(rx.frame.id, 0x181u);
 }
 
+// A plain socket bound on loopback that plays the transport's peer (or a stranger) byte by byte.
+struct RawPeer {
+  int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  std::uint16_t port = 0;
+  RawPeer() {
+    sockaddr_in local{};
+    local.sin_family = AF_INET;
+    inet_pton(AF_INET, "127.0.0.1", &local.sin_addr);
+    ::bind(fd, reinterpret_cast<sockaddr*>(&local), sizeof local);
+    socklen_t len = sizeof local;
+    ::getsockname(fd, reinterpret_cast<sockaddr*>(&local), &len);
+    port = ntohs(local.sin_port);
+  }
+  ~RawPeer() { ::close(fd); }
+  void SendTo(std::uint16_t to_port, const std::uint8_t* bytes, std::size_t n) const {
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    to.sin_port = htons(to_port);
+    inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
+    ::sendto(fd, bytes, n, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+  }
+  void SendFrame(std::uint16_t to_port, const CanFrame& f, std::uint8_t seq) const {
+    std::uint8_t buf[32];
+    const std::size_t n = write_cannelloni_packet(&f, 1, seq, buf, sizeof buf);
+    SendTo(to_port, buf, n);
+  }
+};
+
 TEST(UdpTransportTest, MalformedDatagramIsCountedAndSkipped) {
   UdpPair p;
   ASSERT_TRUE(p.a && p.b);
-  const int raw = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_port = htons(p.b->local_port());
-  inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
+  RawPeer peer;
+  p.b->set_remote_port(peer.port);
   const std::uint8_t junk[] = {0x42, 0x00, 0x01};
-  ::sendto(raw, junk, sizeof junk, 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
-  ::close(raw);
+  peer.SendTo(p.b->local_port(), junk, sizeof junk);
   CanFrame f;
   f.id = 0x700 + 1;
   f.len = 3;
-  ASSERT_EQ(p.a->send(f, p.a->now() + 10ms), SendStatus::Queued);
+  peer.SendFrame(p.b->local_port(), f, 0);
   TimedFrame rx;
   ASSERT_TRUE(receive_within(*p.b, rx, 1s));
   EXPECT_EQ(rx.frame.id, 0x701u);
@@ -120,21 +144,14 @@ TEST(UdpTransportTest, MalformedDatagramIsCountedAndSkipped) {
 TEST(UdpTransportTest, SequenceGapIsReportedAsLostFrames) {
   UdpPair p;
   ASSERT_TRUE(p.a && p.b);
+  RawPeer peer;
+  p.b->set_remote_port(peer.port);
   // Hand-made packets with seq 10 then 13: two datagrams lost in between.
-  const int raw = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_port = htons(p.b->local_port());
-  inet_pton(AF_INET, "127.0.0.1", &to.sin_addr);
   CanFrame f;
   f.id = 0x181;
   f.len = 1;
-  std::uint8_t buf[32];
-  for (std::uint8_t seq : {std::uint8_t{10}, std::uint8_t{13}}) {
-    const std::size_t n = write_cannelloni_packet(&f, 1, seq, buf, sizeof buf);
-    ::sendto(raw, buf, n, 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
-  }
-  ::close(raw);
+  peer.SendFrame(p.b->local_port(), f, 10);
+  peer.SendFrame(p.b->local_port(), f, 13);
   TimedFrame rx;
   ASSERT_TRUE(receive_within(*p.b, rx, 1s));
   ASSERT_TRUE(receive_within(*p.b, rx, 1s));
@@ -143,6 +160,36 @@ TEST(UdpTransportTest, SequenceGapIsReportedAsLostFrames) {
   EXPECT_EQ(ev.kind, BusEvent::Kind::RxOverflow);
   EXPECT_EQ(ev.detail, 2u);
   EXPECT_EQ(p.b->stats().rx_dropped, 2u);
+}
+
+// Anyone on the host can send to the bridge's port: a stray tool, a second emulator, a spoofer.
+// Only the configured peer's datagrams become frames; the others are counted and dropped, and do
+// not disturb the peer's sequence tracking.
+TEST(UdpTransportTest, DatagramsFromOtherThanTheConfiguredPeerAreDroppedAndCounted) {
+  UdpPair p;
+  ASSERT_TRUE(p.a && p.b);
+  RawPeer stranger;
+  CanFrame injected;
+  injected.id = 0x201;  // a torque command for node 1
+  injected.len = 8;
+  injected.data[1] = 0;
+  stranger.SendFrame(p.b->local_port(), injected, 0);
+  stranger.SendFrame(p.b->local_port(), injected, 1);
+  // The same address but another port is a stranger too: a's peer is b, not this socket.
+  CanFrame genuine;
+  genuine.id = 0x181;
+  genuine.len = 1;
+  genuine.data[0] = 0x5A;
+  ASSERT_EQ(p.a->send(genuine, p.a->now() + 10ms), SendStatus::Queued);
+  TimedFrame rx;
+  ASSERT_TRUE(receive_within(*p.b, rx, 1s));
+  EXPECT_EQ(rx.frame, genuine);
+  EXPECT_FALSE(p.b->receive(rx)) << "a stranger's frame got through, id " << std::hex << rx.frame.id;
+  EXPECT_EQ(p.b->stats().foreign, 2u);
+  EXPECT_EQ(p.b->stats().rx_frames, 1u);
+  EXPECT_EQ(p.b->stats().rx_dropped, 0u);
+  BusEvent ev;
+  EXPECT_FALSE(p.b->poll_event(ev));
 }
 
 TEST(UdpTransportTest, BadAddressIsANamedErrorNotACrash) {
