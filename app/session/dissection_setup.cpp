@@ -1,7 +1,11 @@
 #include "app/session/dissection_setup.h"
 
+#include <spdlog/spdlog.h>
+
 #include <cstdlib>
 #include <functional>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -80,13 +84,34 @@ std::filesystem::path BemCachePath(const Scenario& scenario) {
          ("liver-" + scenario.liver.surface_mesh.stem().string() + "-" + std::to_string(h % 1000000007u) + ".greens");
 }
 
+void WarnOncePerProcess(const std::string& message) {
+  // Opening the same scenario again (Session > Open scenario...) must not repeat the warning.
+  static std::mutex mutex;
+  static std::set<std::string> said;
+  std::lock_guard lock(mutex);
+  if (said.insert(message).second) spdlog::warn("{}", message);
+}
+
 std::shared_ptr<const physics::DissectionModel> BuildDissectionModelFor(const Scenario& scenario,
                                                                         const SceneMeshes& meshes) {
   physics::DissectionModelInputs in = MakeDissectionInputs(scenario, meshes);
   const std::filesystem::path cache = BemCachePath(scenario);
   std::error_code ec;
-  std::filesystem::create_directories(cache.parent_path(), ec);  // no cache folder: computed, not cached
-  if (!ec) in.liver_bem.cache_path = cache.string();
+  std::filesystem::create_directories(cache.parent_path(), ec);
+  if (!ec) {
+    in.liver_bem.cache_path = cache.string();
+  } else {
+    WarnOncePerProcess("BEM cache folder " + cache.parent_path().string() + ": cannot be created (" + ec.message() +
+                       "); running without the cache (each start computes the liver's Green's functions again)");
+  }
+  in.liver_bem.on_warning = WarnOncePerProcess;
+  in.liver_bem.on_progress = [last = -1](physics::BemPrecomputeStage stage, double fraction) mutable {
+    // Every 20 % of the assembly and the solve's start and end: a few lines, never minutes of silence.
+    const int step = static_cast<int>(fraction * 5.0);
+    if (stage == physics::BemPrecomputeStage::kAssembly && step == last) return;
+    last = stage == physics::BemPrecomputeStage::kAssembly ? step : -1;
+    spdlog::info("liver BEM precompute: {} {:.0f} %", physics::ToString(stage), 100.0 * fraction);
+  };
   return physics::BuildDissectionModel(in);
 }
 

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario.h"
@@ -21,9 +22,14 @@ physics::DissectionModelInputs MakeDissectionInputs(const Scenario& scenario, co
 /// derived from the scenario file; the cache checks its own key, so a stale file is rebuilt.
 std::filesystem::path BemCachePath(const Scenario& scenario);
 
-/// MakeDissectionInputs + BuildDissectionModel with the BEM cache.
+/// MakeDissectionInputs + BuildDissectionModel with the BEM cache. A cache that cannot be used
+/// (folder not creatable, read-only or full disk, a directory in the way) is logged once as a
+/// warning and the model is computed uncached; the precompute's progress is logged.
 std::shared_ptr<const physics::DissectionModel> BuildDissectionModelFor(const Scenario& scenario,
                                                                         const SceneMeshes& meshes);
+
+/// Logs `message` as a warning unless this process already logged the same text.
+void WarnOncePerProcess(const std::string& message);
 
 /// Cautery settings of a session (fx defaults; the membrane fades in 0.25 s of active contact).
 fx::CauteryParams DefaultCauteryParams();

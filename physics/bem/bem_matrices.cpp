@@ -156,7 +156,7 @@ class RowAssembler {
 }  // namespace
 
 BemMatrices AssembleBemMatrices(const TriangleMesh& surface, const ElasticMaterial& material,
-                                const BemQuadratureOptions& options) {
+                                const BemQuadratureOptions& options, const std::function<void(double)>& on_progress) {
   ValidateBemMaterial(material);
   ValidateTriangleMesh(surface, "BEM surface", SurfaceRequirement::kClosed);
   std::vector<ElementGeometry> elements(static_cast<std::size_t>(surface.num_triangles()));
@@ -177,8 +177,10 @@ BemMatrices AssembleBemMatrices(const TriangleMesh& surface, const ElasticMateri
   BemMatrices m{Eigen::MatrixXd(dofs, dofs), Eigen::MatrixXd(dofs, dofs)};  // every row is written
   // Blocks of consecutive rows per task keep threads off each other's cache lines.
   constexpr int kRowsPerTask = 16;
-  std::atomic<int> next_task{0};
-  auto worker = [&] {
+  std::atomic<int> next_task{0}, rows_done{0};
+  const double rows = surface.num_vertices();
+  double next_report = 0.05;
+  auto worker = [&](bool reports) {
     RowAssembler assembler(elements, material, options);
     for (;;) {
       const int first = kRowsPerTask * next_task.fetch_add(1);
@@ -186,13 +188,19 @@ BemMatrices AssembleBemMatrices(const TriangleMesh& surface, const ElasticMateri
       const int last = std::min(first + kRowsPerTask, surface.num_vertices());
       for (int i = first; i < last; ++i)
         assembler.AssembleRow(i, surface.vertices.row(i).transpose(), m.H, m.G);
+      const double done = (rows_done += last - first) / rows;
+      if (reports && on_progress && done >= next_report && done < 1.0) {
+        on_progress(done);
+        next_report = done + 0.05;
+      }
     }
   };
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker, false);
+  worker(true);  // only the calling thread reports: the callback need not be thread-safe
   for (std::thread& t : pool) t.join();
+  if (on_progress) on_progress(1.0);
   return m;
 }
 

@@ -3,6 +3,7 @@
 // collocation: unknowns are the displacement and traction at each vertex (3 components each).
 
 #include <Eigen/Core>
+#include <functional>
 
 #include "physics/bem/bem_material.h"
 #include "physics/mesh/triangle_mesh.h"
@@ -25,7 +26,10 @@ struct BemQuadratureOptions {
 /// Gauss quadrature away from the collocation point (subdivided when near), Duffy quadrature on
 /// the elements touching it, and the rigid-body identity H_ii = -sum_{j != i} H_ij for the
 /// diagonal blocks, so the strongly singular integral is never evaluated. Uses all cores.
+/// `on_progress` (optional) is called on the calling thread with the fraction of rows done, in
+/// steps of about 5 %, the last time with 1.
 BemMatrices AssembleBemMatrices(const TriangleMesh& surface, const ElasticMaterial& material,
-                                const BemQuadratureOptions& options = {});
+                                const BemQuadratureOptions& options = {},
+                                const std::function<void(double)>& on_progress = {});
 
 }  // namespace vesica::physics

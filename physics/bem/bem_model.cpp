@@ -3,9 +3,18 @@
 #include <utility>
 #include <vector>
 
+#include "physics/bem/bem_errors.h"
 #include "physics/mesh/mesh_validation.h"
 
 namespace vesica::physics {
+
+const char* ToString(BemPrecomputeStage stage) {
+  switch (stage) {
+    case BemPrecomputeStage::kAssembly: return "assembling the BEM matrices";
+    case BemPrecomputeStage::kSolve: return "solving for the Green's functions";
+  }
+  return "unknown";
+}
 
 std::uint64_t BemCacheKey(const TriangleMesh& surface, const ElasticMaterial& material,
                           const BemQuadratureOptions& quadrature) {
@@ -43,8 +52,9 @@ BemModel PrecomputeBemModel(const TriangleMesh& surface, const ElasticMaterial& 
   const Eigen::Index cols = 3 * static_cast<Eigen::Index>(model.layout.free_nodes.size());
   const std::uint64_t key = BemCacheKey(surface, material, options.quadrature);
   GreensCacheStatus status = GreensCacheStatus::kMissing;
+  std::string unreadable_reason;
   if (!options.cache_path.empty()) {
-    if (auto cached = ReadGreensCache(options.cache_path, key, status)) {
+    if (auto cached = ReadGreensCache(options.cache_path, key, status, &unreadable_reason)) {
       if (cached->rows() == rows && cached->cols() == cols) {
         model.greens = std::move(*cached);
       } else {
@@ -55,9 +65,38 @@ BemModel PrecomputeBemModel(const TriangleMesh& surface, const ElasticMaterial& 
   if (cache_status) *cache_status = status;
   if (model.greens.size() > 0) return model;
 
-  model.greens =
-      ComputeGreensFunctions(AssembleBemMatrices(surface, material, options.quadrature), model.layout);
-  if (!options.cache_path.empty()) WriteGreensCache(options.cache_path, key, model.greens);
+  const BemPrecomputeCost cost =
+      EstimateBemPrecomputeCost(surface.num_vertices(), static_cast<std::int64_t>(model.layout.free_nodes.size()));
+  if (options.max_peak_bytes > 0 && cost.peak_bytes > options.max_peak_bytes) {
+    throw BemError(source + ": too large for the BEM liver: " + DescribeBemPrecomputeCost(surface.num_vertices(), cost) +
+                   " (limit " + std::to_string(options.max_peak_bytes >> 20) +
+                   " MiB); decimate the surface to about 1000-2000 vertices");
+  }
+  bool warned = false;
+  const auto warn = [&](const std::string& message) {
+    if (options.on_warning && !warned) options.on_warning(message);
+    warned = true;
+  };
+  if (cost.seconds > options.warn_after_s) {
+    warn(source + ": the BEM precompute of " + DescribeBemPrecomputeCost(surface.num_vertices(), cost) +
+         " (the Green's functions are cached afterwards)");
+    warned = false;  // a cache problem below is still worth its own line
+  }
+  const auto progress = [&](BemPrecomputeStage stage, double fraction) {
+    if (options.on_progress) options.on_progress(stage, fraction);
+  };
+  BemMatrices matrices = AssembleBemMatrices(surface, material, options.quadrature,
+                                             [&](double f) { progress(BemPrecomputeStage::kAssembly, f); });
+  progress(BemPrecomputeStage::kSolve, 0.0);
+  model.greens = ComputeGreensFunctions(std::move(matrices), model.layout);
+  progress(BemPrecomputeStage::kSolve, 1.0);
+  if (options.cache_path.empty()) return model;
+  try {
+    WriteGreensCache(options.cache_path, key, model.greens);
+  } catch (const BemError& e) {
+    // The cache is an optimisation: the session runs uncached, and the user hears why once.
+    warn(std::string(e.what()) + "; running without the cache (the next start computes it again)");
+  }
   return model;
 }
 

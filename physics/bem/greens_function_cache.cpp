@@ -1,5 +1,10 @@
 #include "physics/bem/greens_function_cache.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -22,6 +27,7 @@ const char* ToString(GreensCacheStatus status) {
     case GreensCacheStatus::kMissing: return "missing";
     case GreensCacheStatus::kStale: return "stale";
     case GreensCacheStatus::kCorrupt: return "corrupt";
+    case GreensCacheStatus::kUnreadable: return "unreadable";
   }
   return "unknown";
 }
@@ -51,12 +57,23 @@ std::uint64_t HashBytes(const void* data, std::size_t size, std::uint64_t seed) 
 }
 
 std::optional<Eigen::MatrixXd> ReadGreensCache(const std::string& path, std::uint64_t key,
-                                               GreensCacheStatus& status) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    status = GreensCacheStatus::kMissing;
+                                               GreensCacheStatus& status, std::string* reason) {
+  const auto unreadable = [&](const std::string& why) {
+    status = GreensCacheStatus::kUnreadable;
+    if (reason != nullptr) *reason = why;
     return std::nullopt;
+  };
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) {
+    if (errno == ENOENT) {
+      status = GreensCacheStatus::kMissing;
+      return std::nullopt;
+    }
+    return unreadable(std::strerror(errno));  // e.g. a path through a file: "Not a directory"
   }
+  if (!S_ISREG(info.st_mode)) return unreadable("not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return unreadable(std::strerror(errno));
   char header[kHeaderBytes];
   if (!in.read(header, kHeaderBytes) || std::memcmp(header, kMagic, sizeof(kMagic)) != 0) {
     status = GreensCacheStatus::kCorrupt;
@@ -95,6 +112,25 @@ std::optional<Eigen::MatrixXd> ReadGreensCache(const std::string& path, std::uin
   return greens;
 }
 
+namespace {
+
+// Writes all of `size` bytes, retrying short writes; false with errno set on failure.
+bool WriteAll(int fd, const void* data, std::size_t size) {
+  const auto* bytes = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t written = ::write(fd, bytes, size);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    bytes += written;
+    size -= static_cast<std::size_t>(written);
+  }
+  return true;
+}
+
+}  // namespace
+
 void WriteGreensCache(const std::string& path, std::uint64_t key, const Eigen::MatrixXd& greens) {
   char header[kHeaderBytes];
   const std::uint64_t rows = static_cast<std::uint64_t>(greens.rows());
@@ -107,16 +143,37 @@ void WriteGreensCache(const std::string& path, std::uint64_t key, const Eigen::M
   const std::size_t data_bytes = rows * cols * sizeof(double);
   const std::uint64_t checksum =
       HashBytes(greens.data(), data_bytes, HashBytes(header, kHeaderBytes, 0));
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out.write(header, kHeaderBytes);
-    out.write(reinterpret_cast<const char*>(greens.data()), static_cast<std::streamsize>(data_bytes));
-    out.write(reinterpret_cast<const char*>(&checksum), sizeof(checksum));
-    if (!out) throw BemError(temporary + ": cannot write the BEM Green's function cache");
+  const auto fail = [&](const std::string& step) {
+    throw BemError(path + ": cannot " + step + " the BEM Green's function cache: " + std::strerror(errno));
+  };
+  // A name unique to this call: two processes filling an empty cache each write their own file,
+  // and the last rename wins with a complete one. A leftover from a killed run is never reused.
+  std::string temporary = path + ".tmp-XXXXXX";
+  const int fd = ::mkstemp(temporary.data());
+  if (fd < 0) fail("create a temporary file for");
+  const auto remove_and_fail = [&](const std::string& step) {
+    const int saved = errno;
+    ::close(fd);
+    ::unlink(temporary.c_str());
+    errno = saved;
+    fail(step);
+  };
+  ::fchmod(fd, 0644);  // mkstemp's 0600 would hide it from a second account on a shared cache
+  if (!WriteAll(fd, header, kHeaderBytes) || !WriteAll(fd, greens.data(), data_bytes) ||
+      !WriteAll(fd, &checksum, sizeof(checksum)))
+    remove_and_fail("write");
+  if (::close(fd) != 0) {
+    const int saved = errno;
+    ::unlink(temporary.c_str());
+    errno = saved;
+    fail("write");
   }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
-    throw BemError(path + ": cannot move the BEM Green's function cache into place");
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    const int saved = errno;
+    ::unlink(temporary.c_str());
+    errno = saved;
+    fail("move into place");
+  }
 }
 
 }  // namespace vesica::physics
