@@ -36,6 +36,10 @@ struct LaparoscopeView::Impl {
   std::vector<InstrumentActors> instruments;
   std::vector<physics::InstrumentPose> poses;
   RenderFrameSizes sizes;
+  // RenderToPng's off-screen window, kept for the view's life: a window made and destroyed per
+  // picture left the translucent pass drawing with another context's buffers (vesica-replay
+  // --png-dir segfaulted in Mesa's swrast on its 11th picture).
+  Ptr<vtkRenderWindow> png_window;
 };
 
 LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& meshes)
@@ -125,13 +129,21 @@ void LaparoscopeView::Update(const RenderFrame& frame) {
   m.renderer->ResetCameraClippingRange();
 }
 
-void RenderToPng(LaparoscopeView& view, int width, int height, int frames, const std::filesystem::path& png) {
-  auto window = Ptr<vtkRenderWindow>::New();
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);  // translucent actors vanish with multisampling on Mesa (shared notes)
-  window->SetAlphaBitPlanes(1);  // depth peeling wants destination alpha
+vtkRenderWindow* LaparoscopeView::OffscreenWindow(int width, int height) {
+  auto& window = impl_->png_window;
+  if (!window) {
+    window = Ptr<vtkRenderWindow>::New();
+    window->SetOffScreenRendering(1);
+    window->SetMultiSamples(0);    // translucent actors vanish with multisampling on Mesa
+    window->SetAlphaBitPlanes(1);  // depth peeling wants destination alpha
+    window->AddRenderer(impl_->renderer);
+  }
   window->SetSize(width, height);
-  window->AddRenderer(view.renderer());
+  return window;
+}
+
+void RenderToPng(LaparoscopeView& view, int width, int height, int frames, const std::filesystem::path& png) {
+  vtkRenderWindow* window = view.OffscreenWindow(width, height);
   for (int i = 0; i < std::max(frames, 1); ++i) window->Render();
   auto grab = Ptr<vtkWindowToImageFilter>::New();
   grab->SetInput(window);
@@ -141,7 +153,6 @@ void RenderToPng(LaparoscopeView& view, int width, int height, int frames, const
   writer->SetFileName(png.string().c_str());
   writer->SetInputConnection(grab->GetOutputPort());
   writer->Write();
-  window->RemoveRenderer(view.renderer());
   if (writer->GetErrorCode() != 0 || !std::filesystem::exists(png))
     throw std::runtime_error(png.string() + ": could not write PNG");
 }

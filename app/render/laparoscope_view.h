@@ -43,6 +43,10 @@ class LaparoscopeView {
   /// (ValidateRenderFrame); the view is then left as it was.
   void Update(const RenderFrame& frame);
 
+  /// The off-screen window RenderToPng draws into: made at the first call and kept (one GL
+  /// context for the view's life), resized to width x height.
+  vtkRenderWindow* OffscreenWindow(int width, int height);
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
