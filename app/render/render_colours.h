@@ -6,8 +6,14 @@ namespace vesica::app {
 
 inline constexpr double kLiverRgb[3] = {0.55, 0.17, 0.13};
 inline constexpr double kGallbladderRgb[3] = {0.30, 0.50, 0.22};
-/// Burned tissue at burn level 1: charred, near-black brown. Level b mixes (1-b) tissue + b char.
+/// Cautery's colour ramp (BurnedColour): a fresh burn coagulates to a pale tan-white first, then
+/// browns (desiccation) and chars to near-black with dose, as electrosurgery does to tissue.
+inline constexpr double kCoagulatedRgb[3] = {0.86, 0.78, 0.68};
+inline constexpr double kBrownedRgb[3] = {0.40, 0.24, 0.12};
 inline constexpr double kCharRgb[3] = {0.07, 0.045, 0.03};
+/// Burn levels at which the ramp reaches each colour (tissue at 0, char at 1).
+inline constexpr double kCoagulatedLevel = 0.15;
+inline constexpr double kBrownedLevel = 0.5;
 /// Connective-tissue membrane: thin, whitish yellow, translucent (kMembraneAlpha at opacity 1).
 inline constexpr double kMembraneRgb[3] = {0.92, 0.86, 0.62};
 inline constexpr double kMembraneAlpha = 0.6;
