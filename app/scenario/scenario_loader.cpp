@@ -2,7 +2,12 @@
 
 #include <toml++/toml.h>
 
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <optional>
@@ -15,6 +20,14 @@ namespace vesica::app {
 namespace {
 
 namespace fs = std::filesystem;
+
+/// The shortest text that reads back to the same double, so that a value refused for being out of
+/// range never prints as an allowed one (0.50000000001, not 0.5).
+std::string Shortest(double v) {
+  std::array<char, 32> buf{};
+  const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), v).ptr;
+  return std::string(buf.data(), end);
+}
 
 /// Reads one TOML table, remembering which keys were used so that unknown keys (typos) are errors.
 /// Every message carries file, line and the dotted key.
@@ -41,38 +54,30 @@ class TableReader {
       if (fallback) return *fallback;
       Fail(nullptr, key, "missing (a number is required)");
     }
-    if (auto v = n->value<double>(); v && n->is_number()) return *v;
+    if (auto v = n->value<double>(); v && n->is_number()) {
+      if (!std::isfinite(*v)) Fail(n, key, "must be a finite number, got " + Shortest(*v));
+      return *v;
+    }
     Fail(n, key, std::string("must be a number, got ") + TypeName(*n));
   }
 
   /// A number in the open interval (lo, hi); infinities allowed as open ends.
   double NumberIn(std::string_view key, double lo, double hi, std::optional<double> fallback = std::nullopt) {
     const double v = Number(key, fallback);
-    if (!(v > lo && v < hi)) {
-      std::ostringstream os;
-      os << "must be in (" << lo << ", " << hi << "), got " << v;
-      Fail(table_.get(key), key, os.str());
-    }
+    if (!(v > lo && v < hi))
+      Fail(table_.get(key), key, "must be in (" + Shortest(lo) + ", " + Shortest(hi) + "), got " + Shortest(v));
     return v;
   }
 
   double Positive(std::string_view key, std::optional<double> fallback = std::nullopt) {
     const double v = Number(key, fallback);
-    if (!(v > 0)) {
-      std::ostringstream os;
-      os << "must be > 0, got " << v;
-      Fail(table_.get(key), key, os.str());
-    }
+    if (!(v > 0)) Fail(table_.get(key), key, "must be > 0, got " + Shortest(v));
     return v;
   }
 
   double NonNegative(std::string_view key, std::optional<double> fallback = std::nullopt) {
     const double v = Number(key, fallback);
-    if (!(v >= 0)) {
-      std::ostringstream os;
-      os << "must be >= 0, got " << v;
-      Fail(table_.get(key), key, os.str());
-    }
+    if (!(v >= 0)) Fail(table_.get(key), key, "must be >= 0, got " + Shortest(v));
     return v;
   }
 
@@ -86,14 +91,18 @@ class TableReader {
     Fail(n, key, std::string("must be a string, got ") + TypeName(*n));
   }
 
-  int Integer(std::string_view key, std::optional<int> fallback = std::nullopt) {
+  /// An integer in [lo, hi], checked before it is narrowed (4294967297 is not 1).
+  int IntegerIn(std::string_view key, int lo, int hi, std::optional<int> fallback = std::nullopt) {
     const toml::node* n = Node(key);
     if (!n) {
       if (fallback) return *fallback;
       Fail(nullptr, key, "missing (an integer is required)");
     }
-    if (n->is_integer()) return static_cast<int>(*n->value<std::int64_t>());
-    Fail(n, key, std::string("must be an integer, got ") + TypeName(*n));
+    if (!n->is_integer()) Fail(n, key, std::string("must be an integer, got ") + TypeName(*n));
+    const std::int64_t v = n->as_integer()->get();
+    if (v < lo || v > hi)
+      Fail(n, key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
+    return static_cast<int>(v);
   }
 
   Eigen::Vector3d Vector3(std::string_view key, std::optional<Eigen::Vector3d> fallback = std::nullopt) {
@@ -112,6 +121,8 @@ class TableReader {
       const toml::node& e = (*a)[static_cast<std::size_t>(i)];
       if (!e.is_number()) Fail(n, key, "element " + std::to_string(i) + " must be a number");
       v[i] = *e.value<double>();
+      if (!std::isfinite(v[i]))
+        Fail(n, key, "element " + std::to_string(i) + " must be a finite number, got " + Shortest(v[i]));
     }
     return v;
   }
@@ -198,6 +209,7 @@ fs::path ExistingFile(TableReader& t, std::string_view key, const fs::path& base
   fs::path p = fs::path(raw).is_absolute() ? fs::path(raw) : base_dir / raw;
   p = p.lexically_normal();
   std::error_code ec;
+  if (fs::is_directory(p, ec)) t.Fail(t.table().get(key), key, "is a directory, not a file: " + p.string());
   if (!fs::is_regular_file(p, ec)) t.Fail(t.table().get(key), key, "file not found: " + p.string());
   return p;
 }
@@ -274,7 +286,7 @@ Scenario ParseScenario(std::string_view text, const fs::path& source_name, const
     s.abdominal_wall.surface_mesh = ExistingFile(t, "surface_mesh", base_dir);
     const double opacity = t.Number("opacity", 0.15);
     if (!(opacity >= 0 && opacity <= 1))
-      t.Fail(t.table().get("opacity"), "opacity", "must be in [0, 1], got " + std::to_string(opacity));
+      t.Fail(t.table().get("opacity"), "opacity", "must be in [0, 1], got " + Shortest(opacity));
     s.abdominal_wall.opacity = opacity;
     t.RejectUnknownKeys();
   }
@@ -315,10 +327,7 @@ Scenario ParseScenario(std::string_view text, const fs::path& source_name, const
     if (in.input == InputKind::kReplay) in.replay_file = ExistingFile(t, "replay_file", base_dir);
     if (in.input == InputKind::kCanArm || in.input == InputKind::kEmulatedArm) {
       in.can_interface = t.String("can_interface", std::string(in.input == InputKind::kCanArm ? "can0" : "virtual"));
-      in.can_node_id = t.Integer("can_node_id");
-      if (in.can_node_id < 1 || in.can_node_id > 127)
-        t.Fail(t.table().get("can_node_id"), "can_node_id",
-               "must be in [1, 127], got " + std::to_string(in.can_node_id));
+      in.can_node_id = t.IntegerIn("can_node_id", 1, 127);
     }
     in.shaft_length_m = t.Positive("shaft_length_m", 0.36);
     in.shaft_radius_m = t.Positive("shaft_radius_m", 0.0025);
@@ -335,8 +344,11 @@ Scenario ParseScenario(std::string_view text, const fs::path& source_name, const
 }
 
 Scenario LoadScenario(const fs::path& path) {
+  std::error_code ec;
+  // A directory opens as a stream on Linux and reads as empty: say what it is.
+  if (fs::is_directory(path, ec)) throw ScenarioError(path.string() + ": is a directory, not a scenario file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError(path.string() + ": cannot open scenario file");
+  if (!in) throw ScenarioError(path.string() + ": cannot open scenario file: " + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
   return ParseScenario(text.str(), path, path.parent_path());

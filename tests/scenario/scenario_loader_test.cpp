@@ -202,6 +202,57 @@ TEST_F(ScenarioLoaderTest, MissingTableIsNamed) {
               HasSubstr(": connective_tissue: missing table [connective_tissue]"));
 }
 
+TEST_F(ScenarioLoaderTest, IntegerBeyondIntIsRefusedNotWrapped) {
+  // 4294967297 = 2^32 + 1 once narrowed to int as 1, a valid node id.
+  EXPECT_THAT(ErrorAfter("can_node_id = 2", "can_node_id = 4294967297"),
+              HasSubstr("case.toml:" + std::to_string(LineOf("can_node_id")) +
+                        ": instruments[1].can_node_id: must be in [1, 127], got 4294967297"));
+  EXPECT_THAT(ErrorAfter("can_node_id = 2", "can_node_id = -4294967295"),
+              HasSubstr("instruments[1].can_node_id: must be in [1, 127], got -4294967295"));
+}
+
+TEST_F(ScenarioLoaderTest, NanAndInfinityAreRefusedForEveryNumber) {
+  EXPECT_THAT(ErrorAfter("stiffness_N_per_m = 20.0", "stiffness_N_per_m = inf"),
+              HasSubstr("case.toml:" + std::to_string(LineOf("stiffness_N_per_m")) +
+                        ": connective_tissue.stiffness_N_per_m: must be a finite number, got inf"));
+  EXPECT_THAT(ErrorAfter("poisson_ratio = 0.45", "poisson_ratio = nan"),
+              HasSubstr("gallbladder.poisson_ratio: must be a finite number, got nan"));
+  EXPECT_THAT(ErrorAfter("[0.1, 0.1, 0.0]", "[0.1, -inf, 0.0]"),
+              HasSubstr("case.toml:" + std::to_string(LineOf("[0.1, 0.1, 0.0]")) +
+                        ": trocars[1].position_m: element 1 must be a finite number, got -inf"));
+  EXPECT_THAT(ErrorAfter("look_at_m = [0.0, 0.0, 0.0]", "look_at_m = [0.0, nan, 0.0]"),
+              HasSubstr("laparoscope.look_at_m: element 1 must be a finite number, got nan"));
+  EXPECT_THAT(ErrorAfter("stiffness_N_per_m = 20.0\n", "stiffness_N_per_m = 20.0\ndamping_Ns_per_m = +inf\n"),
+              HasSubstr("connective_tissue.damping_Ns_per_m: must be a finite number, got inf"));
+  EXPECT_THAT(ErrorAfter("surface_mesh = \"wall.vtk\"\n", "surface_mesh = \"wall.vtk\"\nopacity = nan\n"),
+              HasSubstr("abdominal_wall.opacity: must be a finite number, got nan"));
+}
+
+TEST_F(ScenarioLoaderTest, RefusedValuesPrintEveryDigitTheyHave) {
+  EXPECT_THAT(ErrorAfter("poisson_ratio = 0.45", "poisson_ratio = 0.50000000001"),
+              HasSubstr("gallbladder.poisson_ratio: must be in (-1, 0.5), got 0.50000000001"));
+  EXPECT_THAT(ErrorAfter("youngs_modulus_Pa = 170000.0", "youngs_modulus_Pa = -1e-300"),
+              HasSubstr("liver.youngs_modulus_Pa: must be > 0, got -1e-300"));
+  EXPECT_THAT(ErrorAfter("surface_mesh = \"wall.vtk\"\n", "surface_mesh = \"wall.vtk\"\nopacity = 1.0000001\n"),
+              HasSubstr("abdominal_wall.opacity: must be in [0, 1], got 1.0000001"));
+}
+
+TEST_F(ScenarioLoaderTest, DirectoryGivenAsMeshIsNamedAsSuch) {
+  fs::create_directories(dir_ / "meshes");
+  EXPECT_THAT(ErrorAfter("\"gb.vtu\"", "\"meshes\""),
+              HasSubstr("case.toml:" + std::to_string(LineOf("gb.vtu")) +
+                        ": gallbladder.volume_mesh: is a directory, not a file: " + (dir_ / "meshes").string()));
+}
+
+TEST_F(ScenarioLoaderTest, DirectoryGivenAsScenarioIsNamedAsSuch) {
+  try {
+    LoadScenario(dir_);
+    FAIL() << "no error";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(std::string(e.what()), dir_.string() + ": is a directory, not a scenario file");
+  }
+}
+
 TEST_F(ScenarioLoaderTest, UnreadableFileIsNamed) {
   try {
     LoadScenario(dir_ / "absent.toml");
