@@ -9,18 +9,27 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <numbers>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
 #include "app/armsim/armsim_transport.h"
+#include "app/armsim/hand_trajectory.h"
+#include "device/input/input_recording.h"
 #include "firmware_protocol/emulator/arm_emulator.h"
 
 namespace {
 
 std::atomic<bool> g_stop{false};
 void OnSignal(int) { g_stop.store(true); }
+
+// The reference directions' elevations of the shipped cholecystectomy scenarios (trocar to the
+// laparoscope's target): the left (grasper) port looks 15.2 degrees down, the right (hook) 9.5 up.
+constexpr double kShippedLeftElevationDeg = -15.214833;
+constexpr double kShippedRightElevationDeg = 9.533593;
 
 }  // namespace
 
@@ -35,9 +44,19 @@ int main(int argc, char** argv) {
   double hand_x_mm = 0.0, hand_y_mm = 0.0, depth_mm = 120.0;
   std::string log_level = "info";
   bool report = false;
-  app.add_option("--local-port", udp.local_port, "UDP port this arm listens on")->check(CLI::Range(1, 65535));
+  std::vector<std::string> hand = {"hold"};
+  std::string side;
+  double elevation_deg = 1000.0;  // not given: the shipped scenario's, for the side
+  double figure8_mm = 25.0, figure8_period_s = 6.0;
+  // The trainer's bridge (app/session/arm_bridge.h) expects node n on 20000 + 2(n-1), answering
+  // to the next port: the defaults follow --node-id, so `--node-id 2` alone is the right arm.
+  CLI::Option* local_port = app.add_option("--local-port", udp.local_port,
+                                           "UDP port this arm listens on (default 20000 + 2 (node id - 1))")
+                                ->check(CLI::Range(1, 65535));
   app.add_option("--remote-host", udp.remote_host, "host bridge address (IPv4)");
-  app.add_option("--remote-port", udp.remote_port, "host bridge UDP port")->check(CLI::Range(1, 65535));
+  CLI::Option* remote_port =
+      app.add_option("--remote-port", udp.remote_port, "host bridge UDP port (default the local port + 1)")
+          ->check(CLI::Range(1, 65535));
   app.add_option("--duration-s", duration_s, "stop after this many seconds (0: until SIGINT/SIGTERM)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--node-id", node_id, "CAN node id of this arm")->check(CLI::Range(1, 127));
@@ -46,12 +65,58 @@ int main(int argc, char** argv) {
   app.add_option("--hand-y-mm", hand_y_mm, "hand target, trocar frame y, mm");
   app.add_option("--depth-mm", depth_mm, "park insertion depth and hand target depth, mm")
       ->check(CLI::Range(20.0, 250.0));
+  app.add_option("--hand", hand,
+                 "what the hand does: 'hold' (at --hand-x-mm/--hand-y-mm/--depth-mm), 'figure8' (about that point), "
+                 "or 'recording FILE' (one instrument of a recorded session, e.g. data/recordings/dissection.csv)")
+      ->expected(1, 2);
+  app.add_option("--side", side, "recording: which instrument the hand plays, left or right (default: left for node 1, "
+                                 "right otherwise)")
+      ->check(CLI::IsMember({"left", "right"}));
+  app.add_option("--reference-elevation-deg", elevation_deg,
+                 "recording: elevation of the instrument's reference direction (trocar to the laparoscope's target) "
+                 "above the horizontal, degrees (default: the shipped cholecystectomy scenarios', -15.2 left, 9.5 right)")
+      ->check(CLI::Range(-89.0, 89.0));
+  app.add_option("--figure8-mm", figure8_mm, "figure8: half-width, mm")->check(CLI::Range(1.0, 100.0));
+  app.add_option("--figure8-period-s", figure8_period_s, "figure8: seconds per loop")->check(CLI::Range(0.5, 600.0));
   app.add_option("--realtime-priority", realtime_priority, "SCHED_FIFO priority, 0: normal scheduling")
       ->check(CLI::Range(0, 99));
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error");
   app.add_flag("--report", report, "print the final plant state as one key=value line on stdout");
   CLI11_PARSE(app, argc, argv);
+  if (local_port->count() == 0) udp.local_port = 20000 + 2 * (node_id - 1);
+  if (remote_port->count() == 0) udp.remote_port = udp.local_port + 1;
   spdlog::set_level(spdlog::level::from_str(log_level));
+
+  // The hand's script is built before the link opens: a bad recording is refused at once.
+  const double depth = depth_mm * 1e-3;
+  const emu::Vec3 hold_T{hand_x_mm * 1e-3, hand_y_mm * 1e-3, depth};
+  emu::HandScript script;
+  std::string hand_text;
+  try {
+    const std::string& mode = hand.at(0);
+    if ((mode == "recording") != (hand.size() == 2))
+      throw std::invalid_argument("--hand: 'recording' takes a FILE, 'hold' and 'figure8' take nothing");
+    if (mode == "hold") {
+      script = vesica::app::HoldingHand(hold_T);
+      hand_text = "holding";
+    } else if (mode == "figure8") {
+      script = vesica::app::FigureEightHand(hold_T, figure8_mm * 1e-3, figure8_period_s);
+      hand_text = "tracing a figure eight";
+    } else if (mode == "recording") {
+      const bool left = side.empty() ? node_id == 1 : side == "left";
+      if (elevation_deg > 90.0) elevation_deg = left ? kShippedLeftElevationDeg : kShippedRightElevationDeg;
+      const vesica::device::InputRecording recording = vesica::device::ReadInputRecording(hand[1]);
+      script = vesica::app::RecordedHand(recording, left ? vesica::device::kLeft : vesica::device::kRight,
+                                         elevation_deg * std::numbers::pi / 180.0, {0.0, 0.0, depth});
+      hand_text = "playing the " + std::string(left ? "left" : "right") + " instrument of " + hand[1] + " (" +
+                  std::to_string(recording.frames.size()) + " frames, repeating)";
+    } else {
+      throw std::invalid_argument("--hand: unknown '" + mode + "' (hold, figure8, recording FILE)");
+    }
+  } catch (const std::exception& e) {
+    spdlog::error("vesica-armsim: {}", e.what());
+    return 2;
+  }
 
   std::unique_ptr<vesica::fp::Transport> transport;
   std::string error;
@@ -69,18 +134,15 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
 
-  const double depth = depth_mm * 1e-3;
   const emu::Joint4 q0{0.0, 0.0, 0.0, depth};
   emu::ArmEmulator::Config config;
   config.tick_period = std::chrono::microseconds(tick_us);
   config.node_id = static_cast<std::uint8_t>(node_id);
   config.board.park_position = {0.0f, 0.0f, static_cast<float>(depth)};
   emu::ArmEmulator arm(*transport, emu::ArmPlantParameters::Nominal(), q0, config);
-  emu::HandTarget hold;
-  hold.p_T = {hand_x_mm * 1e-3, hand_y_mm * 1e-3, depth};
-  arm.plant().SetHandScript(emu::HandScript(hold));
-  spdlog::info("vesica-armsim: node {} listening on UDP {} -> {}:{}", arm.node().node_id(), udp.local_port,
-               udp.remote_host, udp.remote_port);
+  arm.plant().SetHandScript(script);
+  spdlog::info("vesica-armsim: node {} listening on UDP {} -> {}:{}, the hand {}", arm.node().node_id(),
+               udp.local_port, udp.remote_host, udp.remote_port, hand_text);
 
   const auto start = transport->now();
   auto next_log = start;

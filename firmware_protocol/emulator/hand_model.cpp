@@ -1,5 +1,8 @@
 #include "firmware_protocol/emulator/hand_model.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace vesica::fp::emulator {
 
 bool HandScript::Add(double t_s, const HandTarget& target) {
@@ -8,14 +11,23 @@ bool HandScript::Add(double t_s, const HandTarget& target) {
   return true;
 }
 
+bool HandScript::RepeatFrom(double t_s) {
+  if (keys_.empty() || !(t_s >= keys_.front().t_s && t_s < keys_.back().t_s)) return false;
+  repeat_from_s_ = t_s;
+  return true;
+}
+
 HandTarget HandScript::At(double t_s) const {
   if (keys_.empty()) return HandTarget{};
+  if (repeat_from_s_ >= 0.0 && t_s > keys_.back().t_s)
+    t_s = repeat_from_s_ + std::fmod(t_s - repeat_from_s_, keys_.back().t_s - repeat_from_s_);
   if (t_s <= keys_.front().t_s) return keys_.front().target;
   if (t_s >= keys_.back().t_s) return keys_.back().target;
-  std::size_t i = 1;
-  while (keys_[i].t_s < t_s) ++i;
-  const Keyframe& a = keys_[i - 1];
-  const Keyframe& b = keys_[i];
+  // Binary search: recorded scripts have thousands of keyframes and the plant asks at 10 kHz.
+  const auto after = std::upper_bound(keys_.begin(), keys_.end(), t_s,
+                                      [](double t, const Keyframe& k) { return t < k.t_s; });
+  const Keyframe& a = *(after - 1);
+  const Keyframe& b = *after;
   const double s = b.t_s > a.t_s ? (t_s - a.t_s) / (b.t_s - a.t_s) : 1.0;
   HandTarget out = a.target;  // discrete fields hold until the next keyframe
   for (int k = 0; k < 3; ++k) out.p_T[k] = a.target.p_T[k] + s * (b.target.p_T[k] - a.target.p_T[k]);

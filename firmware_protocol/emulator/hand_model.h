@@ -27,6 +27,8 @@ struct HandTarget {
 };
 
 /// Keyframed targets, linearly interpolated in time; pedal, holding follow the latest keyframe.
+/// After the last keyframe the script holds it, or, after RepeatFrom(t), plays [t, last] again and
+/// again (a lead-in before t plays once), so a scripted hand can move for as long as it runs.
 class HandScript {
  public:
   struct Keyframe {
@@ -38,10 +40,18 @@ class HandScript {
   /// Keyframes must be added in increasing time; an earlier one is ignored (returns false).
   bool Add(double t_s, const HandTarget& target);
   HandTarget At(double t_s) const;
+  /// Repeat the keyframes from t_s (>= the first keyframe's time, < the last's) to the last one
+  /// forever; the script should end where it is at t_s or the hand jumps. False (and no repeat)
+  /// when t_s is outside that range.
+  bool RepeatFrom(double t_s);
   bool empty() const { return keys_.empty(); }
+  std::size_t size() const { return keys_.size(); }
+  /// Time of the last keyframe (0 for an empty script), s.
+  double end_s() const { return keys_.empty() ? 0.0 : keys_.back().t_s; }
 
  private:
   std::vector<Keyframe> keys_;
+  double repeat_from_s_ = -1.0;  ///< < 0: no repeat
 };
 
 /// Force the hand puts on the instrument at the tip (T frame, N) for tip position p and

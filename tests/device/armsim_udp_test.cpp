@@ -1,6 +1,8 @@
 // The same bridge against vesica-armsim in its own process, over CAN-over-UDP on loopback.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <thread>
 #include <vector>
 
@@ -104,6 +106,73 @@ TEST(ArmsimUdpTest, VanishedArmProcessIsReportedAndReplacementReconnects) {
   EXPECT_EQ(wait_for(DeviceStatus::kOk, 3000), DeviceStatus::kOk) << ToString(arm.Status()) << " " << arm.last_error();
   EXPECT_EQ(arm.link_restore_count(), 1u);
   loop.Stop();
+}
+
+// Runs vesica-armsim with `hand_args` against a bridge for `seconds`, and returns the tip
+// positions the bridge measured (every 10 ms once the arm was ok).
+std::vector<Eigen::Vector3d> TipsMeasuredWithHand(const std::vector<std::string>& hand_args, double seconds) {
+  const std::uint16_t arm_port = testing::FreeUdpPort();
+  std::string error;
+  auto host = fp::UdpTransport::open({.local_port = 0, .remote_port = arm_port}, error);
+  EXPECT_TRUE(host) << error;
+  if (!host) return {};
+  std::vector<std::string> args{"--local-port", std::to_string(arm_port), "--remote-port",
+                                std::to_string(host->local_port()), "--log-level", "warn"};
+  args.insert(args.end(), hand_args.begin(), hand_args.end());
+  testing::ArmsimProcess armsim;
+  EXPECT_TRUE(armsim.Start(VESICA_ARMSIM_PATH, args));
+  CanArmConfig config;
+  config.node_watchdog_timeout = 50ms;
+  config.loss_timeout = 100ms;
+  CanArm arm(*host, config);
+  arm.Open();
+  BridgeLoop loop(arm);
+  loop.Start();
+  for (int i = 0; i < 300 && arm.Status() != DeviceStatus::kOk; ++i) std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(arm.Status(), DeviceStatus::kOk) << ToString(arm.Status()) << " " << arm.last_error();
+  std::vector<Eigen::Vector3d> tips;
+  for (int i = 0; i < static_cast<int>(seconds * 100); ++i) {
+    std::this_thread::sleep_for(10ms);
+    if (arm.Status() == DeviceStatus::kOk) tips.push_back(arm.GetToolState().p_BTip_B);
+  }
+  loop.Stop();
+  return tips;
+}
+
+double Range(const std::vector<Eigen::Vector3d>& tips, const std::function<double(const Eigen::Vector3d&)>& f) {
+  double lo = 1e9, hi = -1e9;
+  for (const Eigen::Vector3d& p : tips) {
+    lo = std::min(lo, f(p));
+    hi = std::max(hi, f(p));
+  }
+  return tips.empty() ? 0.0 : hi - lo;
+}
+
+// `--hand figure8`: the scripted hand moves the emulated arm and the bridge sees the instrument
+// trace the figure (25 mm to each side by default).
+TEST(ArmsimUdpTest, FigureEightHandMovesTheArmTheBridgeMeasures) {
+  const auto tips = TipsMeasuredWithHand({"--hand", "figure8", "--figure8-period-s", "2"}, 3.0);
+  ASSERT_GT(tips.size(), 100u);
+  EXPECT_GT(Range(tips, [](const Eigen::Vector3d& p) { return p.x(); }), 0.04);
+  EXPECT_GT(Range(tips, [](const Eigen::Vector3d& p) { return p.y(); }), 0.015);
+}
+
+// `--hand recording FILE`: the right hand of the committed dissection. The arm starts parked at
+// 120 mm and the recording's hook starts at 50 mm: the bridge sees the insertion follow.
+TEST(ArmsimUdpTest, RecordedHandMovesTheArmTheBridgeMeasures) {
+  const auto tips = TipsMeasuredWithHand(
+      {"--side", "right", "--hand", "recording", VESICA_SOURCE_DIR "/data/recordings/dissection.csv"}, 3.0);
+  ASSERT_GT(tips.size(), 100u);
+  EXPECT_GT(Range(tips, [](const Eigen::Vector3d& p) { return p.norm(); }), 0.04);
+  EXPECT_LT(tips.back().norm(), 0.07);  // at the recording's depth after the 2 s lead-in
+}
+
+TEST(ArmsimUdpTest, UnreadableRecordingIsANamedErrorAtStart) {
+  testing::ArmsimProcess armsim;
+  ASSERT_TRUE(armsim.Start(VESICA_ARMSIM_PATH, {"--hand", "recording", "/nonexistent/dissection.csv"}));
+  std::string out;
+  EXPECT_EQ(armsim.Finish(&out), 2);
+  EXPECT_NE(out.find("/nonexistent/dissection.csv"), std::string::npos) << out;
 }
 
 }  // namespace
