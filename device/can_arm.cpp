@@ -159,6 +159,10 @@ void CanArm::HandleFrame(const fp::TimedFrame& rx) {
     jaw_rad_ = aux->jaw_rad;
     buttons_ = (aux->pedal ? 1u : 0u) | (aux->handle_button ? 2u : 0u);
   } else if (const auto* hb = std::get_if<fp::Heartbeat>(&m)) {
+    if (hb->state == fp::NodeState::Boot) {  // the boot-up message: a new life of the node
+      ForgetNodeSession();
+      ++node_boot_count_;
+    }
     node_state_ = hb->state;
     node_enabled_ = hb->enabled;
     node_fault_ = hb->latched_fault;
@@ -180,6 +184,15 @@ void CanArm::HandleFrame(const fp::TimedFrame& rx) {
     node_fault_ = em->fault;  // code None is the fault-reset acknowledgement
     if (em->fault != fp::FaultCode::None) node_enabled_ = false;
   }
+}
+
+void CanArm::ForgetNodeSession() {
+  state_sequence_.reset();
+  negotiated_ = false;
+  watchdog_configured_ = config_.node_watchdog_timeout.count() == 0;
+  node_enabled_ = false;
+  request_sent_ns_ = -1;
+  last_handshake_ns_ = -1;
 }
 
 void CanArm::SendHandshake(fp::Nanoseconds now) {
@@ -229,13 +242,8 @@ void CanArm::Tick() {
   }
 
   if (link_.Poll(t) == LinkMonitor::Event::kLost) {
-    // The node may reboot while away: its counters, version negotiation and settings restart,
-    // so the handshake does too when it comes back.
-    state_sequence_.reset();
-    negotiated_ = false;
-    watchdog_configured_ = config_.node_watchdog_timeout.count() == 0;
-    node_enabled_ = false;
-    request_sent_ns_ = -1;
+    // The node may reboot while away: the handshake starts again when it comes back.
+    ForgetNodeSession();
     last_state_ns_ = -1;
     qd_.setZero();
   }
@@ -334,6 +342,8 @@ void CanArm::ResetStatistics() {
   loop_period_.Clear();
   round_trip_.Clear();
 }
+bool CanArm::answered() const { std::lock_guard lock(mu_); return link_.ever_seen(); }
+std::uint32_t CanArm::node_boot_count() const { std::lock_guard lock(mu_); return node_boot_count_; }
 std::uint32_t CanArm::link_loss_count() const { std::lock_guard lock(mu_); return link_.loss_count(); }
 std::uint32_t CanArm::link_restore_count() const { std::lock_guard lock(mu_); return link_.restore_count(); }
 fp::DecodeErrorCounters CanArm::decode_errors() const { std::lock_guard lock(mu_); return decode_errors_; }

@@ -65,6 +65,8 @@ class CanArm final : public HapticDevice {
   LatencyStatistics::Summary loop_period() const;  ///< between Tick() calls
   LatencyStatistics::Summary round_trip() const;   ///< command/SYNC sent -> joint state back
   void ResetStatistics();                          ///< start a new measurement window
+  bool answered() const;  ///< a joint state has arrived since Open()
+  std::uint32_t node_boot_count() const;  ///< boot-up messages seen since Open(): the node restarted
   std::uint32_t link_loss_count() const;
   std::uint32_t link_restore_count() const;
   fp::DecodeErrorCounters decode_errors() const;
@@ -76,6 +78,9 @@ class CanArm final : public HapticDevice {
   enum class Phase { kClosed, kConnecting, kRunning, kFault };
 
   void HandleFrame(const fp::TimedFrame& rx);
+  /// The node may have restarted (link lost, or its boot-up message): its counters, version
+  /// negotiation and RAM settings start afresh, so the handshake does too.
+  void ForgetNodeSession();
   bool Send(const fp::Message& m, fp::Nanoseconds now);
   void SendHandshake(fp::Nanoseconds now);
   void SendCommand(fp::Nanoseconds now, bool zero);
@@ -122,6 +127,7 @@ class CanArm final : public HapticDevice {
   bool reset_requested_ = false;
   bool watchdog_configured_ = false;
   std::uint64_t send_failures_ = 0;
+  std::uint32_t node_boot_count_ = 0;
   std::string last_error_;
 };
 

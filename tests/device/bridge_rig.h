@@ -27,17 +27,32 @@ struct BridgeRig {
   std::unique_ptr<emu::ArmEmulator> emulator;
   std::unique_ptr<CanArm> arm;
   bool host_running = true;
+  bool arm_running = true;  ///< false: the arm's process is gone (see KillArm / StartArm)
   int step = 0;
 
   explicit BridgeRig(const CanArmConfig& config = {}) {
+    StartArm();
+    arm = std::make_unique<CanArm>(host_ep, config);
+  }
+
+  /// A fresh arm process (vesica-armsim started again): a new node boots now on a blank flash.
+  void StartArm() {
     emu::ArmEmulator::Config ec;
     ec.board.park_position = {static_cast<float>(kStart[0]), static_cast<float>(kStart[1]),
                               static_cast<float>(kStart[3])};
+    fp::TimedFrame stale;
+    while (arm_ep.receive(stale)) {}  // a new process does not read its predecessor's socket
+    arm_ep.set_connected(true);
     emulator = std::make_unique<emu::ArmEmulator>(arm_ep, emu::ArmPlantParameters::Nominal(), kStart, ec);
     emu::HandTarget hold;
     hold.p_T = emu::TipPosition(kStart);
     emulator->plant().SetHandScript(emu::HandScript(hold));
-    arm = std::make_unique<CanArm>(host_ep, config);
+    arm_running = true;
+  }
+  /// The arm's process dies: nothing answers any more.
+  void KillArm() {
+    arm_running = false;
+    arm_ep.set_connected(false);
   }
 
   /// Advances bus time by `seconds` in 100 us steps; the host ticks every 1 ms while running.
@@ -47,7 +62,7 @@ struct BridgeRig {
     const int steps = static_cast<int>(std::lround(seconds / 1e-4));
     for (int i = 0; i < steps; ++i) {
       bus.advance(100us);
-      emulator->RunUntil(clock.now());
+      if (arm_running) emulator->RunUntil(clock.now());
       if (++step % 10 == 0) {
         if (host_running) arm->Tick();
         each_ms();

@@ -231,6 +231,31 @@ TEST(CanArmTest, LossIsDetectedReportedAndReconnects) {
   EXPECT_GT(MaxAbs(rig.emulator->plant().motor_current_A()), 0.05);
 }
 
+// vesica-armsim restarted faster than the loss timeout (a script's `kill; vesica-armsim &`): the
+// link never reads lost, but the node's boot-up heartbeat says it is a new node, so the bridge
+// negotiates again and writes its watchdog setting again (the new node booted with 3 ms, which a
+// host without real-time scheduling trips), and the arm returns to ok.
+TEST(CanArmTest, NodeRebootWithinTheLossTimeoutRedoesTheHandshake) {
+  CanArmConfig config;
+  config.node_watchdog_timeout = 20ms;
+  BridgeRig rig(config);
+  rig.arm->Open();
+  rig.Run(0.3);
+  ASSERT_EQ(rig.arm->Status(), DeviceStatus::kOk);
+  for (int i = 0; i < 150; ++i) rig.Run(0.001);  // the new node's counters read as fresh, not stale
+  const std::uint32_t boots = rig.arm->node_boot_count();
+  rig.KillArm();
+  rig.Run(0.003);
+  rig.StartArm();
+  EXPECT_EQ(rig.emulator->node().parameters().u32(fp::param::kWatchdogTimeout_us), 3000u);
+  rig.Run(0.5);
+  EXPECT_EQ(rig.arm->link_loss_count(), 0u);
+  EXPECT_EQ(rig.arm->Status(), DeviceStatus::kOk);
+  EXPECT_EQ(rig.arm->node_boot_count(), boots + 1);
+  EXPECT_EQ(rig.emulator->node().parameters().u32(fp::param::kWatchdogTimeout_us), 20000u);
+  EXPECT_TRUE(rig.emulator->node().enabled());
+}
+
 // Two arms (node ids 1 and 2) and two bridges on one classic 1 Mbit/s bus at 1 kHz: both render
 // their own force, and the measured bus load stays within the 60% budget.
 TEST(CanArmTest, TwoArmsShareOneBusWithinLoadBudget) {
