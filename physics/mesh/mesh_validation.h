@@ -18,12 +18,18 @@ class MeshError : public std::runtime_error {
 
 enum class SurfaceRequirement {
   kAny,     ///< finite coordinates, valid indices, no degenerate triangles
-  kClosed,  ///< also edge-manifold, vertex-manifold, closed, consistently and outwardly oriented
+  kClosed,  ///< also edge-manifold, vertex-manifold, closed, not self-intersecting, consistently and
+            ///< outwardly oriented
 };
 
 /// Throws MeshError at the first defect; `source` names the mesh in the message (a file path).
 void ValidateTriangleMesh(const TriangleMesh& mesh, const std::string& source,
                           SurfaceRequirement requirement);
+
+/// The boundary of a (valid) tet mesh must be a closed, manifold, outward surface (kClosed);
+/// errors name the mesh's own numbers: "vertex 26" is the volume's vertex 26, a face is named
+/// "tetrahedron 5 face opposite corner 2". Call after ValidateTetrahedralMesh.
+void ValidateTetMeshBoundary(const TetrahedralMesh& mesh, const std::string& source);
 
 /// Throws MeshError for non-finite coordinates, out-of-range or repeated indices, and degenerate
 /// or inverted tets (|signed volume| below `min_relative_volume` times the mean edge length cubed).

@@ -109,6 +109,43 @@ TEST(MeshValidationTest, NonManifoldEdgeAndVertex) {
   EXPECT_THAT(SurfaceError(bowtie), HasSubstr("vertex 0: is non-manifold"));
 }
 
+/// A 2 x 2 x 2 box of unit size (27 vertices, vertex 13 inside, 26 the corner (1, 1, 1)) and one
+/// more tet that touches it at `shared` corners only (vertex 26, or the edge (23, 26)).
+TetrahedralMesh BoxWithTouchingTet(bool share_edge) {
+  TetrahedralMesh m = MakeBoxTetMesh({1, 1, 1}, {2, 2, 2});
+  const int n = m.num_vertices();
+  m.vertices.conservativeResize(n + 3, 3);
+  m.vertices.row(n) << 1.5, 1, 1.5;
+  m.vertices.row(n + 1) << 1, 1.5, 1.5;
+  m.vertices.row(n + 2) << 1.5, 1.5, 1;
+  m.tets.conservativeResize(m.num_tets() + 1, 4);
+  m.tets.row(m.num_tets() - 1) << 26, (share_edge ? 23 : n), n + 1, n + 2;
+  if (SignedTetVolume(m, m.num_tets() - 1) < 0) std::swap(m.tets(m.num_tets() - 1, 2), m.tets(m.num_tets() - 1, 3));
+  return m;
+}
+
+std::string BoundaryError(const TetrahedralMesh& m) {
+  try {
+    ValidateTetrahedralMesh(m, "gallbladder.vtu");
+    ValidateTetMeshBoundary(m, "gallbladder.vtu");
+  } catch (const MeshError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(MeshValidationTest, TetBoundaryErrorsGiveTheVolumesNumbers) {
+  EXPECT_EQ(BoundaryError(MakeBoxTetMesh({1, 1, 1}, {2, 2, 2})), "no error");
+  // On the boundary surface vertex 26 has another number (interior vertex 13 is not on it).
+  EXPECT_EQ(BoundaryError(BoxWithTouchingTet(false)),
+            "gallbladder.vtu: vertex 26: is non-manifold (its triangles form more than one fan)");
+  EXPECT_THAT(BoundaryError(BoxWithTouchingTet(true)),
+              ::testing::AnyOf(HasSubstr(": edge (23, 26) is shared by more than two triangles"),
+                               HasSubstr(": edge (26, 23) is shared by more than two triangles")));
+  EXPECT_THAT(BoundaryError(BoxWithTouchingTet(true)), ::testing::MatchesRegex(
+                                                           "gallbladder.vtu: tetrahedron [0-9]+ face opposite corner [0-3]: .*"));
+}
+
 TEST(MeshValidationTest, EmptyMeshIsNamed) {
   EXPECT_THAT(SurfaceError(TriangleMesh{}), HasSubstr("liver.obj: mesh: has no vertices"));
 }
