@@ -1,13 +1,10 @@
 #include "app/mesh_io/mesh_io.h"
 
-#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
-#include <vtkCommand.h>
 #include <vtkCellType.h>
 #include <vtkDataSetSurfaceFilter.h>
 #include <vtkIdList.h>
 #include <vtkIntArray.h>
-#include <vtkOBJReader.h>
 #include <vtkOBJWriter.h>
 #include <vtkPLYReader.h>
 #include <vtkPLYWriter.h>
@@ -29,8 +26,13 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <string>
+
+#include "app/mesh_io/obj_geometry.h"
+#include "app/mesh_io/vtk_reader_errors.h"
+#include "physics/mesh/organ_scale.h"
 
 namespace vesica::app {
 
@@ -54,36 +56,10 @@ void RequireReadable(const fs::path& path) {
   throw MeshError(path.string() + ": unsupported mesh format '" + Extension(path) + "' (expected " + allowed + ")");
 }
 
-// VTK readers report malformed content through error events (and otherwise return a truncated
-// mesh): collect them so that the file is rejected with VTK's own words.
-class ReaderErrors {
- public:
-  explicit ReaderErrors(vtkObject* reader) {
-    callback_->SetClientData(&message_);
-    callback_->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-      auto* message = static_cast<std::string*>(client);
-      if (message->empty() && call) *message = static_cast<const char*>(call);
-    });
-    reader->AddObserver(vtkCommand::ErrorEvent, callback_);
-  }
-  void ThrowIfAny(const fs::path& path) const {
-    if (message_.empty()) return;
-    std::string m = message_;
-    // VTK prefixes "ERROR: In file, line N / vtkReader (0x..): "; keep its last line.
-    if (const auto nl = m.find_last_of('\n', m.size() > 1 ? m.size() - 2 : 0); nl != std::string::npos) m = m.substr(nl + 1);
-    while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
-    throw MeshError(path.string() + ": cannot be read: " + m);
-  }
-
- private:
-  vtkSmartPointer<vtkCallbackCommand> callback_ = vtkSmartPointer<vtkCallbackCommand>::New();
-  std::string message_;
-};
-
 template <typename Reader>
 vtkSmartPointer<vtkPolyData> ReadPoly(const fs::path& path) {
   auto reader = vtkSmartPointer<Reader>::New();
-  const ReaderErrors errors(reader);
+  const VtkReaderErrors errors(reader);
   reader->SetFileName(path.string().c_str());
   reader->Update();
   errors.ThrowIfAny(path);
@@ -92,7 +68,7 @@ vtkSmartPointer<vtkPolyData> ReadPoly(const fs::path& path) {
 
 vtkSmartPointer<vtkPolyData> ReadAnyPoly(const fs::path& path) {
   const std::string ext = Extension(path);
-  if (ext == ".obj") return ReadPoly<vtkOBJReader>(path);
+  if (ext == ".obj") return ReadObjGeometry(path);
   if (ext == ".stl") return ReadPoly<vtkSTLReader>(path);
   if (ext == ".ply") return ReadPoly<vtkPLYReader>(path);
   if (ext == ".vtp") return ReadPoly<vtkXMLPolyDataReader>(path);
@@ -102,7 +78,7 @@ vtkSmartPointer<vtkPolyData> ReadAnyPoly(const fs::path& path) {
     if (!reader->IsFilePolyData()) {
       // A legacy unstructured grid: take its outer surface.
       auto grid = vtkSmartPointer<vtkUnstructuredGridReader>::New();
-      const ReaderErrors grid_errors(grid);
+      const VtkReaderErrors grid_errors(grid);
       grid->SetFileName(path.string().c_str());
       auto surface = vtkSmartPointer<vtkDataSetSurfaceFilter>::New();
       surface->SetInputConnection(grid->GetOutputPort());
@@ -110,7 +86,7 @@ vtkSmartPointer<vtkPolyData> ReadAnyPoly(const fs::path& path) {
       grid_errors.ThrowIfAny(path);
       return surface->GetOutput();
     }
-    const ReaderErrors errors(reader);
+    const VtkReaderErrors errors(reader);
     reader->Update();
     errors.ThrowIfAny(path);
     return reader->GetOutput();
@@ -122,7 +98,7 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadGrid(const fs::path& path) {
   const std::string ext = Extension(path);
   if (ext == ".vtu") {
     auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
-    const ReaderErrors errors(reader);
+    const VtkReaderErrors errors(reader);
     reader->SetFileName(path.string().c_str());
     reader->Update();
     errors.ThrowIfAny(path);
@@ -132,7 +108,7 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadGrid(const fs::path& path) {
     auto reader = vtkSmartPointer<vtkUnstructuredGridReader>::New();
     reader->SetFileName(path.string().c_str());
     if (!reader->IsFileUnstructuredGrid()) throw MeshError(path.string() + ": not a legacy VTK unstructured grid");
-    const ReaderErrors errors(reader);
+    const VtkReaderErrors errors(reader);
     reader->Update();
     errors.ThrowIfAny(path);
     return reader->GetOutput();
@@ -174,6 +150,7 @@ physics::TriangleMesh ReadTriangleMesh(const fs::path& path, physics::SurfaceReq
   if (!poly || poly->GetNumberOfPoints() == 0) throw MeshError(path.string() + ": no vertices could be read");
   physics::TriangleMesh mesh;
   mesh.vertices = CopyPoints(poly->GetPoints());
+  physics::CheckOrganScale(mesh.vertices, path.string());
   vtkCellArray* polys = poly->GetPolys();
   mesh.triangles.resize(polys ? polys->GetNumberOfCells() : 0, 3);
   if (polys) {
@@ -201,6 +178,7 @@ physics::TetrahedralMesh ReadTetrahedralMesh(const fs::path& path) {
   if (!grid || grid->GetNumberOfPoints() == 0) throw MeshError(path.string() + ": no vertices could be read");
   physics::TetrahedralMesh mesh;
   mesh.vertices = CopyPoints(grid->GetPoints());
+  physics::CheckOrganScale(mesh.vertices, path.string());
   mesh.tets.resize(grid->GetNumberOfCells(), 4);
   auto ids = vtkSmartPointer<vtkIdList>::New();
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c) {
@@ -211,6 +189,7 @@ physics::TetrahedralMesh ReadTetrahedralMesh(const fs::path& path) {
     for (int k = 0; k < 4; ++k) mesh.tets(c, k) = CheckedIndex(ids->GetId(k), path, "tetrahedron", c);
   }
   physics::ValidateTetrahedralMesh(mesh, path.string());
+  physics::ValidateTetMeshBoundary(mesh, path.string());
   return mesh;
 }
 

@@ -79,6 +79,108 @@ TEST_F(MeshIoTest, NonFiniteVertexNamesFileAndVertex) {
               HasSubstr(ascii.string() + ": cannot be read: "));
 }
 
+TEST_F(MeshIoTest, VtksOwnReasonIsKept) {
+  // It once ended at "cannot be read: ": VTK's text was cut at its trailing blank line.
+  auto sphere = physics::MakeIcosphere(0.05, 1);
+  sphere.vertices(7, 0) = std::numeric_limits<double>::quiet_NaN();
+  const fs::path p = dir_ / "nan.vtk";  // the NaN stops VTK's legacy ASCII reader
+  WriteTriangleMesh(sphere, p);
+  EXPECT_EQ(ErrorOf([&] { ReadTriangleMesh(p, physics::SurfaceRequirement::kAny); }),
+            p.string() + ": cannot be read: Unrecognized keyword: nan");
+  // The reason of a helper nobody observes (the XML parser), not the reader's summary.
+  const fs::path xml = dir_ / "not_xml.vtp";
+  std::ofstream(xml) << "this is not XML\n";
+  EXPECT_EQ(ErrorOf([&] { ReadTriangleMesh(xml, physics::SurfaceRequirement::kAny); }),
+            xml.string() + ": cannot be read: Error parsing XML in stream at line 1, column 0, byte index 0: syntax error");
+}
+
+/// A closed cube of side 0.1 m as exporters write it: eight `v`, one `vn` a face, and faces
+/// `f v//vn` whose normal index differs from the vertex index (VTK then splits every corner).
+constexpr const char* kCubeObjWithFaceNormals = R"(# cube
+v 0 0 0
+v 0.1 0 0
+v 0.1 0.1 0
+v 0 0.1 0
+v 0 0 0.1
+v 0.1 0 0.1
+v 0.1 0.1 0.1
+v 0 0.1 0.1
+vn 0 0 -1
+vn 0 0 1
+vn 0 -1 0
+vn 1 0 0
+vn 0 1 0
+vn -1 0 0
+f 1//1 3//1 2//1
+f 1//1 4//1 3//1
+f 5//2 6//2 7//2
+f 5//2 7//2 8//2
+f 1//3 2//3 6//3
+f 1//3 6//3 5//3
+f 2//4 3//4 7//4
+f 2//4 7//4 6//4
+f 3//5 4//5 8//5
+f 3//5 8//5 7//5
+f 4//6 1//6 5//6
+f 4//6 5//6 8//6
+)";
+
+TEST_F(MeshIoTest, ObjWithPerFaceNormalsIsTheClosedMeshItIs) {
+  const fs::path p = dir_ / "cube.obj";
+  std::ofstream(p) << kCubeObjWithFaceNormals;
+  const auto cube = ReadTriangleMesh(p, physics::SurfaceRequirement::kClosed);
+  EXPECT_EQ(cube.num_vertices(), 8);
+  EXPECT_EQ(cube.num_triangles(), 12);
+  EXPECT_NEAR(physics::EnclosedVolume(cube), 1e-3, 1e-9);  // VTK's OBJ reader keeps floats
+  // The vertices keep the file's numbers: v line k is vertex k - 1.
+  EXPECT_TRUE(cube.vertices.row(6).isApprox(Eigen::RowVector3d(0.1, 0.1, 0.1), 1e-7)) << cube.vertices;
+  EXPECT_EQ(cube.triangles.row(0), Eigen::RowVector3i(0, 2, 1));
+}
+
+TEST_F(MeshIoTest, SelfIntersectingObjIsRefusedNamingTheFacePairs) {
+  // Two closed tetrahedra, the second's corner inside the first.
+  const fs::path p = dir_ / "two_tets.obj";
+  std::ofstream(p) << "v 0 0 0\nv 0.01 0 0\nv 0 0.01 0\nv 0 0 0.01\n"
+                      "v 0.002 0.002 0.002\nv 0.012 0.002 0.002\nv 0.002 0.012 0.002\nv 0.002 0.002 0.012\n"
+                      "vn 0 0 1\n"
+                      "f 1//1 3//1 2//1\nf 1//1 2//1 4//1\nf 1//1 4//1 3//1\nf 2//1 3//1 4//1\n"
+                      "f 5//1 7//1 6//1\nf 5//1 6//1 8//1\nf 5//1 8//1 7//1\nf 6//1 7//1 8//1\n";
+  EXPECT_EQ(ErrorOf([&] { ReadTriangleMesh(p, physics::SurfaceRequirement::kClosed); }),
+            p.string() + ": mesh: intersects itself: 3 pairs of triangles cross: triangle 3 and triangle 4; "
+                         "triangle 3 and triangle 5; triangle 3 and triangle 6");
+}
+
+TEST_F(MeshIoTest, TetBoundaryErrorsGiveTheFilesNumbers) {
+  // A 2 x 2 x 2 box (vertex 13 inside) and a tet touching it at corner vertex 26 only.
+  auto box = physics::MakeBoxTetMesh({0.1, 0.1, 0.1}, {2, 2, 2});
+  box.vertices.conservativeResize(30, 3);
+  box.vertices.bottomRows(3) << 0.15, 0.1, 0.15, 0.1, 0.15, 0.15, 0.15, 0.15, 0.1;
+  box.tets.conservativeResize(box.num_tets() + 1, 4);
+  box.tets.bottomRows(1) << 26, 27, 29, 28;
+  const fs::path p = dir_ / "touching.vtu";
+  WriteTetrahedralMesh(box, p);
+  EXPECT_EQ(ErrorOf([&] { ReadTetrahedralMesh(p); }),
+            p.string() + ": vertex 26: is non-manifold (its triangles form more than one fan)");
+}
+
+TEST_F(MeshIoTest, WrongUnitsAreRefusedNamingTheExtent) {
+  // A liver of 100 m (a file in centimetres): refused before any check that computes on it.
+  const fs::path liver = dir_ / "liver_cm.vtk";
+  WriteTriangleMesh(physics::MakeIcosphere(50, 1), liver);
+  EXPECT_THAT(ErrorOf([&] { ReadTriangleMesh(liver, physics::SurfaceRequirement::kClosed); }),
+              HasSubstr(liver.string() + ": wrong units or scale: the mesh spans 100 x "));
+  auto far = physics::MakeIcosphere(0.05, 1);
+  far.vertices.row(5) << 1e30, 0, 0;
+  const fs::path p = dir_ / "far.vtp";
+  WriteTriangleMesh(far, p);
+  EXPECT_THAT(ErrorOf([&] { ReadTriangleMesh(p, physics::SurfaceRequirement::kAny); }),
+              HasSubstr(p.string() + ": wrong units or scale: the mesh spans 1e+30 x 0.1"));
+  const fs::path tets = dir_ / "box_mm.vtu";
+  WriteTetrahedralMesh(physics::MakeBoxTetMesh({80, 30, 30}, {2, 1, 1}), tets);
+  EXPECT_THAT(ErrorOf([&] { ReadTetrahedralMesh(tets); }),
+              HasSubstr(tets.string() + ": wrong units or scale: the mesh spans 80 x 30 x 30 m"));
+}
+
 TEST_F(MeshIoTest, InvertedTetNamesFileAndTet) {
   auto box = physics::MakeBoxTetMesh({1, 1, 1}, {1, 1, 1});
   std::swap(box.tets(2, 0), box.tets(2, 1));
