@@ -118,6 +118,9 @@ StoredSession ReadSessionRow(const PGresult* result, int row, const detail::PgCo
   r.started_unix_s = ParseNumber<std::int64_t>(text(4), pg, step);
   r.ended_unix_s = ParseNumber<std::int64_t>(text(5), pg, step);
   r.input_recording_path = text(6);
+  r.replay = text(7)[0] == 't';
+  r.unfinished = text(8)[0] == 't';
+  r.physics_lag_s = ParseNumber<double>(text(9), pg, step);
   int column = kSessionHeadColumns;
   for (const auto& field : kMetricFields) {
     std::visit(
@@ -144,7 +147,7 @@ std::string DoubleText(double value) {
 std::vector<std::string> SessionParams(const SessionRecord& r) {
   std::vector<std::string> params{
       r.trainee_id,          r.scenario, r.station, std::to_string(r.started_unix_s), std::to_string(r.ended_unix_s),
-      r.input_recording_path};
+      r.input_recording_path, r.replay ? "true" : "false", r.unfinished ? "true" : "false", DoubleText(r.physics_lag_s)};
   for (const auto& field : kMetricFields) {
     std::visit(
         [&](auto member) {
@@ -209,8 +212,13 @@ PostgresSessionStore::PostgresSessionStore(const std::string& connection_string)
     Transaction transaction(*pg_, step);
     pg_->Exec(kMigrationLockSql, {}, step + ": lock");
     pg_->Exec("CREATE TABLE IF NOT EXISTS vesica_schema (version INTEGER NOT NULL)", {}, step);
-    if (SchemaVersion() == 0) {  // re-read under the lock: another station may have migrated
+    version = SchemaVersion();  // re-read under the lock: another station may have migrated
+    if (version == 0) {
       for (const auto& sql : CreateSchemaV1Sql(SqlDialect::kPostgres)) pg_->Exec(sql, {}, step);
+      version = 1;
+    }
+    if (version == 1) {
+      for (const auto& sql : MigrateSchemaV1ToV2Sql(SqlDialect::kPostgres)) pg_->Exec(sql, {}, step);
       pg_->Exec("INSERT INTO vesica_schema (version) VALUES ($1)", {std::to_string(kSessionSchemaVersion)}, step);
     }
     transaction.Commit(step);

@@ -56,7 +56,9 @@ int main(int argc, char** argv) {
     if (!vesica::app::IsConnectionString(location) && !std::filesystem::exists(location)) {
       throw vesica::app::RecordsError("session database " + location + ": no such file (no session recorded there)");
     }
-    const auto store = vesica::app::OpenSessionStore(location);
+    // Read-only: listing never writes, so a database on a read-only disk or of another user
+    // (a copy from a station, a backup) can be read, and no journal mode is switched.
+    const auto store = vesica::app::OpenSessionStore(location, vesica::app::StoreAccess::kReadOnly);
     if (list->parsed()) {
       if (list_trainee.empty()) {
         for (const auto& trainee : store->ListTrainees()) std::cout << trainee << '\n';

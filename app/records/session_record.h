@@ -17,6 +17,12 @@ struct SessionRecord {
   SessionMetrics metrics;
   std::string input_recording_path;  // recorded instrument input for replay; empty if none
   std::string station;               // which trainer station ran it (host name by default)
+  // Schema version 2:
+  bool replay = false;       // the input came from a recording (a replay or the demo): not the trainee's own
+                             // hands, so it is no step of a learning curve
+  bool unfinished = false;   // stored as it stood when the trainer quit (or was told to stop) mid-session
+  double physics_lag_s = 0;  // how far the simulation fell behind the wall clock (>= 0): the trainee lived
+                             // metrics.duration_s, the tissue only duration_s - physics_lag_s
 
   bool operator==(const SessionRecord&) const = default;
 };

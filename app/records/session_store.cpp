@@ -41,6 +41,8 @@ void ValidateRecord(const SessionRecord& record) {
     bad("ended_unix_s: " + std::to_string(record.ended_unix_s) + " is before started_unix_s " +
         std::to_string(record.started_unix_s));
   }
+  if (!std::isfinite(record.physics_lag_s) || record.physics_lag_s < 0)
+    bad("physics_lag_s: must be finite and >= 0, got " + std::to_string(record.physics_lag_s));
   for (const auto& field : kMetricFields) {
     std::visit(
         [&](auto member) {
@@ -65,10 +67,11 @@ bool IsConnectionString(const std::string& location) {
   return std::regex_search(location, keyword_value);
 }
 
-std::unique_ptr<SessionStore> OpenSessionStore(const std::string& location) {
+std::unique_ptr<SessionStore> OpenSessionStore(const std::string& location, StoreAccess access) {
   if (location.empty()) throw RecordsError("session database: empty location");
+  // PostgreSQL: reading needs no switch; the server's permissions decide what a role may do.
   if (IsConnectionString(location)) return std::make_unique<PostgresSessionStore>(location);
-  return std::make_unique<SqliteSessionStore>(location);
+  return std::make_unique<SqliteSessionStore>(location, access);
 }
 
 }  // namespace vesica::app

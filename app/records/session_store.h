@@ -57,11 +57,15 @@ class SessionStore {
   void ValidateForAdd(const SessionRecord& record) const;
 };
 
+/// Whether a store is opened to write sessions (the trainer) or only to read them (vesica-records,
+/// the history view of another station's file).
+enum class StoreAccess { kReadWrite, kReadOnly };
+
 /// The schema version this build writes; older stores are migrated on open, newer ones refused.
-inline constexpr int kSessionSchemaVersion = 1;
+inline constexpr int kSessionSchemaVersion = 2;
 
 /// Throws RecordsError naming the first bad field (empty trainee, end before start, negative or
-/// non-finite metric).
+/// non-finite metric or physics_lag_s).
 void ValidateRecord(const SessionRecord& record);
 
 /// True for a libpq connection string: a "postgresql://" or "postgres://" URI, or keyword=value
@@ -70,7 +74,9 @@ void ValidateRecord(const SessionRecord& record);
 bool IsConnectionString(const std::string& location);
 
 /// PostgreSQL for a connection string, otherwise an SQLite file (created with its folders if
-/// missing). Throws RecordsError when the store cannot be opened or its schema is unusable.
-std::unique_ptr<SessionStore> OpenSessionStore(const std::string& location);
+/// missing; with kReadOnly an existing file opened read-only). Throws RecordsError when the
+/// store cannot be opened or its schema is unusable.
+std::unique_ptr<SessionStore> OpenSessionStore(const std::string& location,
+                                               StoreAccess access = StoreAccess::kReadWrite);
 
 }  // namespace vesica::app

@@ -59,8 +59,21 @@ std::vector<std::string> CreateSchemaV1Sql(SqlDialect dialect) {
   };
 }
 
+std::vector<std::string> MigrateSchemaV1ToV2Sql(SqlDialect dialect) {
+  const bool pg = dialect == SqlDialect::kPostgres;
+  const std::string flag = pg ? "BOOLEAN NOT NULL DEFAULT FALSE" : "INTEGER NOT NULL DEFAULT 0";
+  return {
+      "ALTER TABLE sessions ADD COLUMN replay " + flag + (pg ? "" : " CHECK (replay IN (0, 1))"),
+      "ALTER TABLE sessions ADD COLUMN unfinished " + flag + (pg ? "" : " CHECK (unfinished IN (0, 1))"),
+      std::string("ALTER TABLE sessions ADD COLUMN physics_lag_s ") + (pg ? "DOUBLE PRECISION" : "REAL") +
+          " NOT NULL DEFAULT 0",
+  };
+}
+
 std::string InsertSessionSql(SqlDialect dialect) {
-  std::string columns = "trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path";
+  std::string columns =
+      "trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path, replay, unfinished, "
+      "physics_lag_s";
   for (const auto& field : kMetricFields) columns += ", " + Quoted(field.name);
   std::string values;
   const int count = kSessionHeadColumns - 1 + static_cast<int>(kMetricFields.size());
@@ -72,8 +85,9 @@ std::string InsertTraineeSql(SqlDialect dialect) {
   return "INSERT INTO trainees (trainee_id) VALUES (" + Placeholder(dialect, 1) + ") ON CONFLICT DO NOTHING";
 }
 
-std::string SessionSelectColumns() {
-  std::string columns = "id, trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path";
+std::string SessionSelectColumns(int schema_version) {
+  std::string columns = "id, trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path, ";
+  columns += schema_version >= 2 ? "replay, unfinished, physics_lag_s" : "0, 0, 0";
   for (const auto& field : kMetricFields) columns += ", " + Quoted(field.name);
   return columns;
 }

@@ -7,6 +7,7 @@
 //   sessions(id, trainee_id -> trainees, scenario, station, started_unix_s, ended_unix_s,
 //            input_recording_path, one column per SessionMetrics field)
 //   index sessions_by_trainee(trainee_id, started_unix_s, id)
+// Version 2 adds to sessions: replay, unfinished (booleans), physics_lag_s (double), default 0.
 
 #include <string>
 #include <vector>
@@ -18,6 +19,9 @@ enum class SqlDialect { kSqlite, kPostgres };
 /// Statements that create schema version 1 in an empty database (run in one transaction).
 std::vector<std::string> CreateSchemaV1Sql(SqlDialect dialect);
 
+/// Statements that turn schema version 1 into version 2 (run in one transaction).
+std::vector<std::string> MigrateSchemaV1ToV2Sql(SqlDialect dialect);
+
 /// INSERT INTO sessions (...) VALUES (...) with the parameters in SessionParameterOrder, and
 /// RETURNING id.
 std::string InsertSessionSql(SqlDialect dialect);
@@ -26,10 +30,13 @@ std::string InsertSessionSql(SqlDialect dialect);
 std::string InsertTraineeSql(SqlDialect dialect);
 
 /// "id, trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path,
-/// <metrics in kMetricFields order>" for SELECTs; ReadSessionRow in each backend follows it.
-std::string SessionSelectColumns();
+/// replay, unfinished, physics_lag_s, <metrics in kMetricFields order>" for SELECTs;
+/// ReadSessionRow in each backend follows it.
+/// For a read-only store of an older `schema_version`, the missing columns read as their
+/// defaults (version 1: replay 0, unfinished 0, physics_lag_s 0).
+std::string SessionSelectColumns(int schema_version = 2);
 
-/// Number of leading non-metric columns in SessionSelectColumns (id ... input_recording_path).
-inline constexpr int kSessionHeadColumns = 7;
+/// Number of leading non-metric columns in SessionSelectColumns (id ... physics_lag_s).
+inline constexpr int kSessionHeadColumns = 10;
 
 }  // namespace vesica::app

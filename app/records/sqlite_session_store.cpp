@@ -2,6 +2,7 @@
 
 #include <sqlite3.h>
 
+#include <cstdio>
 #include <system_error>
 #include <variant>
 
@@ -23,6 +24,8 @@ namespace detail {
 struct SqliteDb {
   std::string location;
   sqlite3* handle = nullptr;
+  bool read_only = false;
+  int schema_version = 0;  // as opened (read-only stores read older schemas as they are)
 
   ~SqliteDb() {
     if (handle != nullptr) sqlite3_close_v2(handle);
@@ -94,6 +97,22 @@ class Transaction {
   bool committed_ = false;
 };
 
+// A file path as the path part of an SQLite URI: '%', '?' and '#' escaped (and an absolute path
+// kept absolute), so that any file name opens.
+std::string UriPath(const std::string& path) {
+  std::string uri;
+  for (const char c : path) {
+    if (c == '%' || c == '?' || c == '#') {
+      char escaped[4];
+      std::snprintf(escaped, sizeof escaped, "%%%02X", static_cast<unsigned char>(c));
+      uri += escaped;
+    } else {
+      uri += c;
+    }
+  }
+  return uri;
+}
+
 std::string ColumnText(sqlite3_stmt* statement, int column) {
   const auto* text = sqlite3_column_text(statement, column);
   return text != nullptr ? reinterpret_cast<const char*>(text) : "";
@@ -109,6 +128,9 @@ StoredSession ReadSessionRow(sqlite3_stmt* statement) {
   r.started_unix_s = sqlite3_column_int64(statement, 4);
   r.ended_unix_s = sqlite3_column_int64(statement, 5);
   r.input_recording_path = ColumnText(statement, 6);
+  r.replay = sqlite3_column_int(statement, 7) != 0;
+  r.unfinished = sqlite3_column_int(statement, 8) != 0;
+  r.physics_lag_s = sqlite3_column_double(statement, 9);
   int column = kSessionHeadColumns;
   for (const auto& field : kMetricFields) {
     std::visit(
@@ -129,18 +151,65 @@ StoredSession ReadSessionRow(sqlite3_stmt* statement) {
 
 }  // namespace
 
-SqliteSessionStore::SqliteSessionStore(const std::filesystem::path& path) : db_(std::make_unique<detail::SqliteDb>()) {
+SqliteSessionStore::SqliteSessionStore(const std::filesystem::path& path, StoreAccess access)
+    : db_(std::make_unique<detail::SqliteDb>()) {
   db_->location = path.string();
+  db_->read_only = access == StoreAccess::kReadOnly;
   const auto throw_here = [&](const std::string& what) {
     throw RecordsError("session database " + db_->location + ": " + what);
   };
-  if (path.has_parent_path()) {
+  if (db_->read_only) {
+    std::error_code error;
+    if (!std::filesystem::exists(path, error)) throw_here("no such file (no session recorded there)");
+  } else if (path.has_parent_path()) {
     std::error_code error;
     std::filesystem::create_directories(path.parent_path(), error);
     if (error) throw_here("cannot create folder " + path.parent_path().string() + ": " + error.message());
   }
   if (std::filesystem::is_directory(path)) throw_here("is a directory, not a database file");
 
+  if (db_->read_only) {
+    OpenReadOnly();
+  } else {
+    OpenReadWrite();
+  }
+}
+
+void SqliteSessionStore::OpenReadOnly() {
+  const auto throw_here = [&](const std::string& what) {
+    throw RecordsError("session database " + db_->location + ": " + what);
+  };
+  // A WAL database in a folder we cannot write (no -shm to create) opens read-only only as
+  // "immutable": then SQLite reads the main file as it is and takes no locks.
+  for (const char* extra : {"", "&immutable=1"}) {
+    if (db_->handle != nullptr) sqlite3_close_v2(db_->handle);
+    db_->handle = nullptr;
+    const std::string uri = "file:" + UriPath(db_->location) + "?mode=ro" + extra;
+    if (sqlite3_open_v2(uri.c_str(), &db_->handle, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_FULLMUTEX,
+                        nullptr) != SQLITE_OK)
+      db_->Fail("open read-only");
+    sqlite3_extended_result_codes(db_->handle, 1);
+    db_->Check(sqlite3_busy_timeout(db_->handle, 5000), "set busy timeout");
+    sqlite3_stmt* probe = nullptr;
+    int rc = sqlite3_prepare_v2(db_->handle, "PRAGMA user_version", -1, &probe, nullptr);
+    if (rc == SQLITE_OK) rc = sqlite3_step(probe);
+    sqlite3_finalize(probe);
+    const int primary = rc & 0xff;
+    if (primary != SQLITE_READONLY && primary != SQLITE_CANTOPEN) break;  // other errors: reported below
+  }
+  const std::string check = db_->QueryAllText("PRAGMA quick_check", "check database");
+  if (check != "ok") throw_here("database is corrupt (quick_check: " + check + ")");
+  db_->schema_version = SchemaVersion();
+  if (db_->schema_version > kSessionSchemaVersion) {
+    throw_here("schema version " + std::to_string(db_->schema_version) +
+               " was written by a newer Vesica (this build knows up to " + std::to_string(kSessionSchemaVersion) + ")");
+  }
+}
+
+void SqliteSessionStore::OpenReadWrite() {
+  const auto throw_here = [&](const std::string& what) {
+    throw RecordsError("session database " + db_->location + ": " + what);
+  };
   const int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX;
   if (sqlite3_open_v2(db_->location.c_str(), &db_->handle, flags, nullptr) != SQLITE_OK) db_->Fail("open");
   sqlite3_extended_result_codes(db_->handle, 1);
@@ -168,15 +237,21 @@ SqliteSessionStore::SqliteSessionStore(const std::filesystem::path& path) : db_(
     version = SchemaVersion();  // another process may have migrated while we waited for the lock
     if (version == 0) {
       for (const auto& sql : CreateSchemaV1Sql(SqlDialect::kSqlite)) db_->Exec(sql, step);
+      version = 1;
+    }
+    if (version == 1) {
+      for (const auto& sql : MigrateSchemaV1ToV2Sql(SqlDialect::kSqlite)) db_->Exec(sql, step);
       db_->Exec("PRAGMA user_version=" + std::to_string(kSessionSchemaVersion), step);
     }
     transaction.Commit(step);
   }
+  db_->schema_version = kSessionSchemaVersion;
 }
 
 SqliteSessionStore::~SqliteSessionStore() = default;
 
 std::int64_t SqliteSessionStore::Add(const SessionRecord& record) {
+  if (db_->read_only) throw RecordsError("session database " + db_->location + ": add session: opened read-only");
   ValidateForAdd(record);
   const std::string step = "add session of trainee '" + record.trainee_id + "'";
   Transaction transaction(*db_, step);
@@ -194,6 +269,9 @@ std::int64_t SqliteSessionStore::Add(const SessionRecord& record) {
   db_->Check(sqlite3_bind_int64(s, index++, record.started_unix_s), step);
   db_->Check(sqlite3_bind_int64(s, index++, record.ended_unix_s), step);
   db_->Check(sqlite3_bind_text(s, index++, record.input_recording_path.c_str(), -1, SQLITE_TRANSIENT), step);
+  db_->Check(sqlite3_bind_int(s, index++, record.replay ? 1 : 0), step);
+  db_->Check(sqlite3_bind_int(s, index++, record.unfinished ? 1 : 0), step);
+  db_->Check(sqlite3_bind_double(s, index++, record.physics_lag_s), step);
   for (const auto& field : kMetricFields) {
     std::visit(
         [&](auto member) {
@@ -215,9 +293,10 @@ std::int64_t SqliteSessionStore::Add(const SessionRecord& record) {
 }
 
 std::vector<StoredSession> SqliteSessionStore::List(const std::string& trainee_id) {
+  if (db_->schema_version == 0) return {};  // a read-only empty file: no tables yet
   const std::string step = "list sessions of trainee '" + trainee_id + "'";
   auto statement = db_->Prepare(
-      "SELECT " + SessionSelectColumns() + " FROM sessions WHERE trainee_id = ? ORDER BY started_unix_s, id", step);
+      "SELECT " + SessionSelectColumns(db_->schema_version) + " FROM sessions WHERE trainee_id = ? ORDER BY started_unix_s, id", step);
   db_->Check(sqlite3_bind_text(statement.get(), 1, trainee_id.c_str(), -1, SQLITE_TRANSIENT), step);
   std::vector<StoredSession> sessions;
   for (int rc = sqlite3_step(statement.get()); rc != SQLITE_DONE; rc = sqlite3_step(statement.get())) {
@@ -228,8 +307,9 @@ std::vector<StoredSession> SqliteSessionStore::List(const std::string& trainee_i
 }
 
 std::optional<StoredSession> SqliteSessionStore::Get(std::int64_t id) {
+  if (db_->schema_version == 0) return std::nullopt;
   const std::string step = "get session " + std::to_string(id);
-  auto statement = db_->Prepare("SELECT " + SessionSelectColumns() + " FROM sessions WHERE id = ?", step);
+  auto statement = db_->Prepare("SELECT " + SessionSelectColumns(db_->schema_version) + " FROM sessions WHERE id = ?", step);
   db_->Check(sqlite3_bind_int64(statement.get(), 1, id), step);
   const int rc = sqlite3_step(statement.get());
   db_->Check(rc, step);
@@ -238,6 +318,7 @@ std::optional<StoredSession> SqliteSessionStore::Get(std::int64_t id) {
 }
 
 std::vector<std::string> SqliteSessionStore::ListTrainees() {
+  if (db_->schema_version == 0) return {};
   const std::string step = "list trainees";
   auto statement = db_->Prepare(
       "SELECT trainee_id FROM trainees WHERE EXISTS (SELECT 1 FROM sessions s WHERE s.trainee_id = "

@@ -18,7 +18,10 @@ class SqliteSessionStore final : public SessionStore {
  public:
   /// Opens or creates the file (and its missing folders), migrates the schema, checks the
   /// database (quick_check). Throws RecordsError naming the path and the failing step.
-  explicit SqliteSessionStore(const std::filesystem::path& path);
+  /// StoreAccess::kReadOnly opens an existing file for reading only: nothing is created,
+  /// migrated or switched (journal mode), so a database on a read-only disk or of another user
+  /// can be read; an older schema reads with the newer columns' defaults; Add throws.
+  explicit SqliteSessionStore(const std::filesystem::path& path, StoreAccess access = StoreAccess::kReadWrite);
   ~SqliteSessionStore() override;
 
   std::int64_t Add(const SessionRecord& record) override;
@@ -33,6 +36,8 @@ class SqliteSessionStore final : public SessionStore {
   std::string JournalMode();
 
  private:
+  void OpenReadWrite();
+  void OpenReadOnly();
   std::unique_ptr<detail::SqliteDb> db_;
 };
 

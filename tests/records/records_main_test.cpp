@@ -121,7 +121,36 @@ TEST_F(RecordsToolTest, FileThatIsNotADatabaseFails) {
   const auto run = Records({"--db", notes, "export-csv", "--trainee", "ana"});
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_EQ(run.out, "");
-  EXPECT_THAT(run.err, HasSubstr("session database " + notes + ": switch to WAL journal: file is not a database"));
+  EXPECT_THAT(run.err, HasSubstr("session database " + notes + ": check database: file is not a database"));
+}
+
+TEST_F(RecordsToolTest, ReadsADatabaseItCannotWrite) {
+  // Another user's database (a station's copy, a backup on a read-only disk): as "nobody", with
+  // the file and its folder read-only, listing and exporting work and leave no trace.
+  namespace fs = std::filesystem;
+  fs::permissions(dir_.path(), fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                   fs::perms::others_read | fs::perms::others_exec);
+  fs::permissions(db_, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  const std::string before = [&] {
+    std::stringstream bytes;
+    bytes << std::ifstream(db_, std::ios::binary).rdbuf();
+    return bytes.str();
+  }();
+  fs::permissions(dir_.path(), fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                   fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+  const auto list = testing::RunProcess({VESICA_RECORDS_EXE, "--db", db_, "list"},
+                                        {{"VESICA_RECORDS_DB", std::nullopt}}, 30, testing::kNobodyUid);
+  const auto csv = testing::RunProcess({VESICA_RECORDS_EXE, "--db", db_, "export-csv", "--trainee", "ana"},
+                                       {{"VESICA_RECORDS_DB", std::nullopt}}, 30, testing::kNobodyUid);
+  fs::permissions(dir_.path(), fs::perms::owner_all, fs::perm_options::add);
+  EXPECT_EQ(list.exit_code, 0) << list.err;
+  EXPECT_EQ(list.out, "ana\nben\n");
+  EXPECT_EQ(csv.exit_code, 0) << csv.err;
+  EXPECT_EQ(testing::ReadCsv(csv.out).size(), 3u) << csv.out;
+  std::stringstream after;
+  after << std::ifstream(db_, std::ios::binary).rdbuf();
+  EXPECT_EQ(after.str(), before);
+  EXPECT_FALSE(fs::exists(db_ + "-wal"));
 }
 
 TEST_F(RecordsToolTest, UnreachableServerFailsWithMaskedPassword) {

@@ -1,6 +1,7 @@
 #include "tests/records/run_process.h"
 
 #include <fcntl.h>
+#include <grp.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -29,7 +30,8 @@ std::string ReadFile(const std::filesystem::path& path) {
 }  // namespace
 
 ProcessResult RunProcess(const std::vector<std::string>& argv,
-                         const std::map<std::string, std::optional<std::string>>& env, int timeout_s) {
+                         const std::map<std::string, std::optional<std::string>>& env, int timeout_s,
+                         int run_as_uid) {
   if (argv.empty()) throw std::runtime_error("RunProcess: empty argv");
   // Files rather than pipes: no reader thread, and no deadlock when the child writes a lot.
   TempDir dir("vesica-run");
@@ -58,6 +60,9 @@ ProcessResult RunProcess(const std::vector<std::string>& argv,
     dup2(in, STDIN_FILENO);
     dup2(out, STDOUT_FILENO);
     dup2(err, STDERR_FILENO);
+    if (run_as_uid >= 0 && (setgroups(0, nullptr) != 0 || setgid(static_cast<gid_t>(run_as_uid)) != 0 ||
+                            setuid(static_cast<uid_t>(run_as_uid)) != 0))
+      _exit(125);
     execv(arg_pointers[0], arg_pointers.data());
     _exit(127);
   }

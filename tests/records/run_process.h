@@ -15,9 +15,15 @@ struct ProcessResult {
 };
 
 /// Runs argv[0] (a path) with the arguments; `env` sets (value) or unsets (nullopt) variables
-/// in the child only. Standard input is /dev/null. Throws std::runtime_error when it cannot
-/// start or does not finish within `timeout_s`.
+/// in the child only. Standard input is /dev/null. `run_as_uid` >= 0: the child drops to that
+/// user and group id before it starts (as root, to see what an unprivileged user sees: root
+/// ignores file permissions). Throws std::runtime_error when it cannot start or does not finish
+/// within `timeout_s`.
 ProcessResult RunProcess(const std::vector<std::string>& argv,
-                         const std::map<std::string, std::optional<std::string>>& env = {}, int timeout_s = 30);
+                         const std::map<std::string, std::optional<std::string>>& env = {}, int timeout_s = 30,
+                         int run_as_uid = -1);
+
+/// The user id of "nobody" (65534 on Debian).
+inline constexpr int kNobodyUid = 65534;
 
 }  // namespace vesica::app::testing

@@ -10,6 +10,9 @@ SessionRecord SampleRecord(int index, const std::string& trainee_id) {
   r.started_unix_s = 1795406400 + 600 * static_cast<std::int64_t>(index);
   r.ended_unix_s = r.started_unix_s + 300 + index;
   r.input_recording_path = "/var/lib/vesica/recordings/" + std::to_string(index) + ".rec";
+  r.replay = index % 4 == 3;
+  r.unfinished = index % 5 == 4;
+  r.physics_lag_s = 0.125 * index + 1.0 / 3.0;
   SessionMetrics& m = r.metrics;
   const double x = index + 1;
   m.duration_s = 299.75 + x / 3.0;

@@ -6,8 +6,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sqlite3.h>
+
 #include <fstream>
 #include <sstream>
+
+#include "app/records/sql_schema.h"
 
 #include "tests/records/sample_records.h"
 #include "tests/records/temp_dir.h"
@@ -29,6 +33,77 @@ std::string ReadBytes(const std::filesystem::path& path) {
 
 void WriteBytes(const std::filesystem::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
+}
+
+// Runs `sql` on the file with SQLite itself (no store): to build old or odd databases.
+void RawSql(const std::filesystem::path& path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  char* error = nullptr;
+  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
+  EXPECT_EQ(rc, SQLITE_OK) << (error ? error : "");
+  sqlite3_free(error);
+  sqlite3_close(db);
+}
+
+// A version-1 database as a build before schema 2 left it, with one session of trainee "old".
+void WriteSchemaV1Database(const std::filesystem::path& path) {
+  std::string sql = "BEGIN;";
+  for (const auto& statement : CreateSchemaV1Sql(SqlDialect::kSqlite)) sql += statement + ";";
+  sql += "INSERT INTO trainees VALUES ('old');";
+  sql += "INSERT INTO sessions VALUES (1, 'old', 'cholecystectomy', 'station-1', 1795406400, 1795406700, '', "
+         "300.5, 1.25, 0.5, 2, 40, 1e-5, 0, 4.5, 0.75, 1, 210, 210, 1, 0, 1);";
+  sql += "PRAGMA user_version=1; COMMIT;";
+  RawSql(path, sql);
+}
+
+TEST(SqliteSessionStoreTest, SchemaVersion1IsMigratedKeepingItsSessions) {
+  TempDir dir;
+  const auto path = dir.path() / "sessions.sqlite";
+  WriteSchemaV1Database(path);
+  SqliteSessionStore store(path);
+  EXPECT_EQ(store.SchemaVersion(), 2);
+  const auto old = store.List("old");
+  ASSERT_EQ(old.size(), 1u);
+  EXPECT_EQ(old[0].record.metrics.duration_s, 300.5);
+  EXPECT_TRUE(old[0].record.metrics.success);
+  EXPECT_FALSE(old[0].record.replay);  // sessions before version 2 were all the trainees' own
+  EXPECT_FALSE(old[0].record.unfinished);
+  EXPECT_EQ(old[0].record.physics_lag_s, 0.0);
+  SessionRecord replay = SampleRecord(3, "old");
+  ASSERT_TRUE(replay.replay);
+  const auto id = store.Add(replay);
+  EXPECT_EQ(store.Get(id)->record, replay);
+  EXPECT_EQ(store.CheckIntegrity(), "ok");
+}
+
+TEST(SqliteSessionStoreTest, ReadOnlyOpenChangesNothingInTheFile) {
+  // A version-1 database in rollback-journal mode: opening it to read must neither switch it to
+  // WAL nor migrate it (the trainer that owns it does that), and must read its sessions.
+  TempDir dir;
+  const auto path = dir.path() / "sessions.sqlite";
+  WriteSchemaV1Database(path);
+  const std::string before = ReadBytes(path);
+  {
+    SqliteSessionStore store(path, StoreAccess::kReadOnly);
+    EXPECT_EQ(store.SchemaVersion(), 1);
+    EXPECT_EQ(store.ListTrainees(), std::vector<std::string>{"old"});
+    const auto old = store.List("old");
+    ASSERT_EQ(old.size(), 1u);
+    EXPECT_EQ(old[0].record.metrics.max_force_N, 4.5);
+    EXPECT_FALSE(old[0].record.replay);
+    EXPECT_THAT([&] { store.Add(SampleRecord(0)); }, ThrowsMessage<RecordsError>(HasSubstr("opened read-only")));
+  }
+  EXPECT_EQ(ReadBytes(path), before);
+  EXPECT_FALSE(std::filesystem::exists(path.string() + "-wal"));
+}
+
+TEST(SqliteSessionStoreTest, ReadOnlyOpenOfAMissingFileCreatesNothing) {
+  TempDir dir;
+  const auto path = dir.path() / "sub" / "sessions.sqlite";
+  EXPECT_THAT([&] { SqliteSessionStore store(path, StoreAccess::kReadOnly); },
+              ThrowsMessage<RecordsError>(HasSubstr(path.string() + ": no such file")));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "sub"));
 }
 
 TEST(SqliteSessionStoreTest, UsesWalJournal) {
