@@ -2,6 +2,9 @@
 // window and prints the trainee's metrics; optionally writes a PNG sequence of the laparoscope
 // view (needs an X display: run under xvfb-run on a headless machine).
 //   vesica-replay [-s SCENARIO] RECORDING [--png-dir DIR --png-every-s 0.5]
+// The recording's "# scenario:" line must name the scenario given (--any-scenario overrides).
+// Progress goes to stderr: a line redrawn in place on a terminal, else (logs, CI) a line at each
+// tenth of a replay of more than kPlainProgressMinSteps steps.
 
 #include <spdlog/spdlog.h>
 
@@ -11,9 +14,14 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
+
+#include <unistd.h>
 
 #include "app/render/laparoscope_view.h"
 #include "app/render/scene_meshes.h"
@@ -23,6 +31,65 @@
 #include "app/session/dissection_setup.h"
 #include "device/input/input_recording.h"
 #include "device/input/recording_error.h"
+#include "physics/scene/dissection_settings.h"
+
+namespace {
+
+/// Replays shorter than this (10 s at 5 ms) print no plain progress lines: they end soon enough.
+constexpr long kPlainProgressMinSteps = 2000;
+
+enum class ProgressStyle { kAuto, kLines, kNone };
+
+/// Reports how far a replay has got on stderr, in one of two forms: on a terminal a line redrawn
+/// in place at most every 0.2 s of wall time; otherwise plain lines at each tenth, which a CI log
+/// keeps readable.
+class ReplayProgress {
+ public:
+  /// `session_s`: the session time the replay ends at (steps times h).
+  ReplayProgress(ProgressStyle style, long total_steps, double session_s)
+      : total_steps_(total_steps), session_s_(session_s) {
+    if (style == ProgressStyle::kAuto)
+      style = isatty(STDERR_FILENO) ? ProgressStyle::kAuto : total_steps >= kPlainProgressMinSteps ? ProgressStyle::kLines
+                                                                                                    : ProgressStyle::kNone;
+    live_ = style == ProgressStyle::kAuto;
+    lines_ = style == ProgressStyle::kLines;
+  }
+  ~ReplayProgress() { Finish(); }
+  ReplayProgress(const ReplayProgress&) = delete;
+  ReplayProgress& operator=(const ReplayProgress&) = delete;
+
+  /// Ends the redrawn line, so that what follows starts on a line of its own.
+  void Finish() {
+    if (live_ && drawn_) std::fputc('\n', stderr);
+    drawn_ = false;
+  }
+
+  /// After step `step` (1-based) at session time `time_s` since the recording's start.
+  void Update(long step, double time_s) {
+    const int tenth = static_cast<int>(10 * step / total_steps_);
+    if (lines_ && tenth > last_tenth_) {
+      last_tenth_ = tenth;
+      std::fprintf(stderr, "replay progress: %3d%% (%.3f of %.3f s)\n", 10 * tenth, time_s, session_s_);
+    }
+    if (!live_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (step != total_steps_ && drawn_ && now - last_drawn_ < std::chrono::milliseconds(200)) return;
+    last_drawn_ = now;
+    drawn_ = true;
+    std::fprintf(stderr, "\rreplaying: %.3f of %.3f s (%3d%%)", time_s, session_s_,
+                 static_cast<int>(100 * step / total_steps_));
+    std::fflush(stderr);
+  }
+
+ private:
+  long total_steps_;
+  double session_s_;
+  bool live_ = false, lines_ = false, drawn_ = false;
+  int last_tenth_ = 0;
+  std::chrono::steady_clock::time_point last_drawn_{};
+};
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App cli{"Vesica: replay a recorded dissection headless and print the trainee metrics"};
@@ -46,13 +113,48 @@ int main(int argc, char** argv) {
                "pace the steps to the clock as the trainer does (background work then gets the time it has there)");
   cli.add_option("--slow-steps", slow_step_ms, "list the steps whose wall time exceeds this many ms (to stderr)")
       ->check(CLI::PositiveNumber);
+  bool any_scenario = false;
+  cli.add_flag("--any-scenario", any_scenario,
+               "replay even when the recording's '# scenario:' line names another scenario than the one given");
+  ProgressStyle progress_style = ProgressStyle::kAuto;
+  cli.add_option("--progress", progress_style,
+                 "progress on stderr: auto (redrawn on a terminal; otherwise a line each tenth of a replay longer "
+                 "than 10 s), lines (a line each tenth), none")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, ProgressStyle>{
+              {"auto", ProgressStyle::kAuto}, {"lines", ProgressStyle::kLines}, {"none", ProgressStyle::kNone}},
+          CLI::ignore_case))
+      ->capture_default_str();
   CLI11_PARSE(cli, argc, argv);
 
   try {
     vesica::device::ReplayInput input(vesica::device::ReadInputRecording(recording_path));
+    try {  // refused before anything is built: the span alone decides
+      vesica::app::ReplayStepCount(input.duration_s(), vesica::physics::DissectionSettings{}.time_step_s);
+    } catch (const std::out_of_range& e) {
+      spdlog::error("recording rejected: {}: {}", recording_path, e.what());
+      return 2;
+    }
     const vesica::app::Scenario scenario = vesica::app::LoadScenario(scenario_path);
+    // Checked before the minutes of model building: a recording made in another scenario replays
+    // other anatomy and other ports, and its metrics would mean nothing.
+    const std::string& recorded_in = input.recording().scenario_name;
+    if (recorded_in.empty()) {
+      spdlog::warn("{}: has no '# scenario:' line; replaying it in '{}'", recording_path, scenario.name);
+    } else if (recorded_in != scenario.name) {
+      if (!any_scenario) {
+        spdlog::error(
+            "{}: recorded in scenario '{}', but {} is '{}': give the scenario it was recorded in with -s, or "
+            "--any-scenario to replay it in this one",
+            recording_path, recorded_in, scenario_path, scenario.name);
+        return 2;
+      }
+      spdlog::warn("{}: recorded in scenario '{}', replayed in '{}' (--any-scenario)", recording_path, recorded_in,
+                   scenario.name);
+    }
     const vesica::app::SceneMeshes meshes = vesica::app::LoadSceneMeshes(scenario);
     const auto model = vesica::app::BuildDissectionModelFor(scenario, meshes);
+    const long total_steps = vesica::app::ReplayStepCount(input.duration_s(), model->settings.time_step_s);
     spdlog::info(
         "scenario '{}': liver {} nodes, gallbladder {} nodes, {} springs, {} membrane elements; recording {:.2f} s",
         scenario.name, model->liver->num_nodes(), model->gallbladder->rest_mesh.num_vertices(),
@@ -67,8 +169,12 @@ int main(int argc, char** argv) {
     int png_index = 0;
     double next_png_s = 0;
     const auto paced_from = std::chrono::steady_clock::now();
+    ReplayProgress progress(progress_style, total_steps,
+                            static_cast<double>(total_steps) * model->settings.time_step_s);
+    long steps_done = 0;
     const vesica::app::ReplayOutcome outcome =
         vesica::app::RunReplay(session, input, [&](const vesica::app::DissectionSession& s, const auto& r) {
+          progress.Update(++steps_done, s.time_s());
           if (real_time)
             std::this_thread::sleep_until(paced_from + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                            std::chrono::duration<double>(s.time_s())));
@@ -89,6 +195,7 @@ int main(int argc, char** argv) {
           next_png_s += png_every_s;
         });
 
+    progress.Finish();
     const vesica::app::SessionMetrics m = session.metrics();
     std::printf("session time          %.3f s (%ld steps)\n", m.duration_s, outcome.steps);
     std::printf("gallbladder free      %s", m.gallbladder_free ? "yes" : "no");

@@ -22,8 +22,17 @@ struct ReplayOutcome {
   std::vector<double> step_wall_ms;
 };
 
+/// The longest recording a replay runs: 12 hours of session time (a session is minutes long).
+inline constexpr double kMaxReplayDuration_s = 12.0 * 3600.0;
+
+/// Steps of `time_step_s` that replay a recording spanning `duration_s`: floor(duration / h) + 1.
+/// Throws std::out_of_range, naming the span and the limit, for a span that is not finite, negative
+/// or longer than kMaxReplayDuration_s (a last row at 1e308 s once gave 0 steps and a success).
+long ReplayStepCount(double duration_s, double time_step_s);
+
 using ReplayStepCallback = std::function<void(const DissectionSession&, const SessionStepReport&)>;
 
+/// Throws std::out_of_range as ReplayStepCount does, before the first step.
 ReplayOutcome RunReplay(DissectionSession& session, device::ReplayInput& input, const ReplayStepCallback& on_step = {});
 
 }  // namespace vesica::app
