@@ -1,6 +1,7 @@
 #include "app/session/dissection_session.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace vesica::app {
 
@@ -50,9 +51,18 @@ fx::CauteryContact DissectionSession::CauteryContactFor(const physics::ToolTouch
 
 SessionStepReport DissectionSession::Step(const device::InputFrame& input) {
   std::array<physics::InstrumentPose, 2> poses;
-  for (size_t i = 0; i < 2; ++i) poses[i] = input.instruments[i].pose;
+  bool clamped = false;
+  for (size_t i = 0; i < 2; ++i) {
+    poses[i] = input.instruments[i].pose;
+    // Non-finite and negative values are the scene's to refuse.
+    if (std::isfinite(poses[i].insertion_m) && poses[i].insertion_m > kMaxInsertion_m) {
+      poses[i].insertion_m = kMaxInsertion_m;
+      clamped = true;
+    }
+  }
   SessionStepReport report;
   report.physics = scene_.Step(poses);  // throws before any change for a bad pose
+  if (clamped) ++clamped_inputs_;
   const double h = model_->settings.time_step_s;
 
   // Cautery by the hook (instrument 1); burn maps follow the deformed surfaces.
@@ -83,6 +93,7 @@ SessionStepReport DissectionSession::Step(const device::InputFrame& input) {
   if (report.physics.grasp.slipped > 0) last_slip_s_[0] = scene_.time_s();
   if (pedal) metrics_.cautery_on_s += h;
   last_input_ = input.instruments;
+  for (size_t i = 0; i < 2; ++i) last_input_[i].pose = poses[i];  // drawn where the physics has it
   started_ = true;
   return report;
 }

@@ -28,8 +28,16 @@ class DissectionSession {
   DissectionSession(std::shared_ptr<const physics::DissectionModel> model, const fx::CauteryParams& cautery);
 
   /// Advances one physics step with both instruments as in `input` (its time is not used: the
-  /// session clock is steps x h). Throws std::invalid_argument (state unchanged) for a bad pose.
+  /// session clock is steps x h). Throws std::invalid_argument (state unchanged) for a bad pose
+  /// (not finite, negative insertion). An insertion beyond kMaxInsertion_m is clamped to it.
   SessionStepReport Step(const device::InputFrame& input);
+
+  /// No laparoscopic instrument reaches deeper than this past its trocar (shafts are 0.3-0.45 m,
+  /// the scenario's default 0.36 m). A deeper input (a corrupt recording, a faulty encoder) is
+  /// clamped: a recorded 1e308 m made the tip path length infinite and the session unstorable.
+  static constexpr double kMaxInsertion_m = 0.5;
+  /// Input frames whose insertion was clamped so far.
+  long clamped_inputs() const { return clamped_inputs_; }
 
   /// Metrics so far; success = gallbladder free without perforation.
   SessionMetrics metrics() const;
@@ -60,6 +68,7 @@ class DissectionSession {
   std::array<double, 2> last_slip_s_{-1e9, -1e9};
   bool cautery_active_ = false;
   bool started_ = false;
+  long clamped_inputs_ = 0;
   SessionMetrics metrics_;
   double force_sum_N_ = 0;
   long force_samples_ = 0;

@@ -1,5 +1,6 @@
 #include "app/session/session_runner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 
@@ -61,7 +62,8 @@ device::InputRecording SessionRunner::Recording() const {
 void SessionRunner::PhysicsLoop() {
   Clock::time_point wall_start = Clock::now(), last_publish = Clock::time_point{};
   double paced_from_s = 0;  // session time at wall_start
-  bool finished = false;
+  double wall_before_s = 0;  // running wall time of the session before wall_start (pauses excluded)
+  bool finished = false, idle = false;
   int session = 0;
   while (!stop_) {
     if (const int wanted = requested_session_.load(); wanted != session) {
@@ -73,6 +75,7 @@ void SessionRunner::PhysicsLoop() {
       finished = false;
       wall_start = Clock::now();
       paced_from_s = 0;
+      wall_before_s = 0;
     }
     const bool end_asked = ended_session_.load() == session;
     if (!finished && paused_ && end_asked) {  // End while paused: the session ends where it stands
@@ -80,11 +83,14 @@ void SessionRunner::PhysicsLoop() {
       finished = status_.finished = true;
     }
     if (finished || paused_) {
+      if (!idle) wall_before_s += Seconds(Clock::now() - wall_start);  // the pause does not count
+      idle = true;
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
       wall_start = Clock::now();
       paced_from_s = session_->time_s();
       continue;
     }
+    idle = false;
     // Session time as steps x h (not a running sum), as RunReplay samples: same input, same state.
     const double t = static_cast<double>(session_->scene().steps()) * model_->settings.time_step_s;
     if (options_.real_time) {
@@ -93,7 +99,9 @@ void SessionRunner::PhysicsLoop() {
         std::this_thread::sleep_for(std::chrono::duration<double>(ahead_s));
       } else if (ahead_s < -0.05) {
         // Fell behind (a slow step, the machine busy): go on from now rather than race to catch
-        // up, which would play the lost time back fast.
+        // up, which would play the lost time back fast. The session's wall time goes on; the
+        // lag is reported (status, records), never hidden in a slower session clock.
+        wall_before_s += Seconds(Clock::now() - wall_start);
         wall_start = Clock::now();
         paced_from_s = t;
       }
@@ -119,6 +127,12 @@ void SessionRunner::PhysicsLoop() {
       std::lock_guard lock(mutex_);
       recorder_.Append(stamped);
       status_.session_time_s = session_->time_s();
+      if (options_.real_time) {
+        status_.wall_time_s = wall_before_s + Seconds(now - wall_start);
+        status_.physics_lag_s = std::max(0.0, status_.wall_time_s - status_.session_time_s);
+      } else {
+        status_.wall_time_s = status_.session_time_s;  // as fast as it goes: only simulated time means anything
+      }
       status_.metrics = session_->metrics();
       (void)r;
       if (ended) finished = status_.finished = true;

@@ -38,7 +38,12 @@ struct RunnerOptions {
 
 /// What the GUI shows besides the picture; copied out under a short lock.
 struct RunnerStatus {
-  double session_time_s = 0;
+  double session_time_s = 0;  ///< simulated time (steps x h)
+  /// Wall-clock time the session has been running (not paused), as the trainee lived it.
+  double wall_time_s = 0;
+  /// How far the simulation fell behind the wall clock in real-time mode (a slow step, a busy
+  /// machine): wall_time_s - session_time_s, >= 0; 0 when not paced to the wall clock.
+  double physics_lag_s = 0;
   bool paused = false;
   bool finished = false;  ///< end_after_s reached, End() called, or an error stopped physics
   int session = 0;        ///< which session this status is of: 0 at Start, then the number Reset() returned

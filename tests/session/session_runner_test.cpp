@@ -163,6 +163,32 @@ TEST_F(SessionRunnerTest, EndWhilePausedFinishesWhereItStandsAndResetAfterEndSta
   EXPECT_EQ(second_end.session, second);
 }
 
+// An input whose every sample takes 20 ms: four times the 5 ms step, so physics cannot keep up
+// with the wall clock however fast the machine.
+class SlowInput : public device::InstrumentInputSource {
+ public:
+  device::InputFrame Sample(double) override {
+    std::this_thread::sleep_for(20ms);
+    return {};
+  }
+};
+
+TEST_F(SessionRunnerTest, PhysicsFallingBehindIsReportedNotHiddenInASlowerClock) {
+  RunnerOptions options;  // real time
+  SessionRunner runner(model_, DefaultCauteryParams(), std::make_shared<SlowInput>(), options);
+  runner.Start();
+  const RunnerStatus s = WaitSessionTime(runner, 0.1);  // 20 steps: at least 0.4 s of wall time
+  ASSERT_GE(s.session_time_s, 0.1);
+  // Each step of h = 5 ms took at least 20 ms: the wall clock ran at least 4 x the session time.
+  const double h = model_->settings.time_step_s;
+  const double steps = s.session_time_s / h;
+  EXPECT_GE(s.wall_time_s, steps * 0.020);
+  EXPECT_DOUBLE_EQ(s.physics_lag_s, s.wall_time_s - s.session_time_s);
+  EXPECT_GE(s.physics_lag_s, steps * (0.020 - h));
+  runner.End();
+  WaitFinished(runner);
+}
+
 TEST_F(SessionRunnerTest, BadInputStopsPhysicsWithTheReason) {
   auto input = std::make_shared<LiveInput>();
   device::InstrumentInput bad;
