@@ -20,6 +20,7 @@
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario_loader.h"
 #include "app/trainer/trainer_app.h"
+#include "device/input/input_recording.h"
 
 int main(int argc, char** argv) {
   CLI::App cli{"Vesica laparoscopic cholecystectomy trainer"};
@@ -79,6 +80,16 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 2;
+  }
+  if (!replay.empty()) {
+    // Read before any window opens: a recording that cannot be replayed ends the program with the
+    // reason, rather than a session that silently falls back to the keyboard.
+    try {
+      vesica::device::ReadInputRecording(replay);
+    } catch (const std::exception& e) {
+      spdlog::error("--replay: recording rejected: {}", e.what());
+      return 2;
+    }
   }
   options.replay_file = replay;
   options.real_time = !fast;
