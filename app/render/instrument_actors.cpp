@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/render/display_frame.h"
 #include "app/render/render_colours.h"
 
 namespace vesica::app {
@@ -90,8 +91,8 @@ void InstrumentActors::Update(const InstrumentFrame& frame) {
   const double head_m = config_.kind == InstrumentKind::kGrasper ? kJawLength_m : kHookStem_m;
   const Eigen::Vector3d hinge = tip - head_m * d;
   const Eigen::Vector3d outside = remote_centre_ - (config_.shaft_length_m - pose.insertion_m) * d;
-  shaft_line_->SetPoint1(outside.data());
-  shaft_line_->SetPoint2(hinge.data());
+  shaft_line_->SetPoint1(ToDisplay(outside).data());
+  shaft_line_->SetPoint2(ToDisplay(hinge).data());
   // A frame across the shaft, turned by roll.
   Eigen::Vector3d side = d.cross(Eigen::Vector3d::UnitZ());
   if (side.norm() < 1e-6) side = d.cross(Eigen::Vector3d::UnitX());
@@ -102,10 +103,10 @@ void InstrumentActors::Update(const InstrumentFrame& frame) {
     const double half = 0.5 * std::max(pose.jaw_angle_rad, 0.0);
     const Eigen::Vector3d a = hinge + kJawLength_m * (std::cos(half) * d + std::sin(half) * side);
     const Eigen::Vector3d b = hinge + kJawLength_m * (std::cos(half) * d - std::sin(half) * side);
-    tip_a_->SetPoint1(hinge.data());
-    tip_a_->SetPoint2(a.data());
-    tip_b_->SetPoint1(hinge.data());
-    tip_b_->SetPoint2(b.data());
+    tip_a_->SetPoint1(ToDisplay(hinge).data());
+    tip_a_->SetPoint2(ToDisplay(a).data());
+    tip_b_->SetPoint1(ToDisplay(hinge).data());
+    tip_b_->SetPoint2(ToDisplay(b).data());
     for (vtkActor* jaw : {jaw_a_.Get(), jaw_b_.Get()}) {
       if (frame.slipping)
         Emissive(jaw, kSlipRgb);
@@ -117,16 +118,16 @@ void InstrumentActors::Update(const InstrumentFrame& frame) {
     // The hook: a stem along the shaft, then a short foot sideways (the L that catches tissue).
     const Eigen::Vector3d bend = tip;
     const Eigen::Vector3d foot = bend + kHookFoot_m * side;
-    tip_a_->SetPoint1(hinge.data());
-    tip_a_->SetPoint2(bend.data());
-    tip_b_->SetPoint1(bend.data());
-    tip_b_->SetPoint2(foot.data());
+    tip_a_->SetPoint1(ToDisplay(hinge).data());
+    tip_a_->SetPoint2(ToDisplay(bend).data());
+    tip_b_->SetPoint1(ToDisplay(bend).data());
+    tip_b_->SetPoint2(ToDisplay(foot).data());
     Steel(jaw_a_, kJawGrey);
     if (frame.cautery_active)
       Emissive(jaw_b_, kCauteryGlowRgb);
     else
       Steel(jaw_b_, kJawGrey);
-    glow_->SetCenter(bend.data());
+    glow_->SetCenter(ToDisplay(bend).data());
     glow_actor_->SetVisibility(frame.cautery_active);
   }
 }

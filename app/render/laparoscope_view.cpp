@@ -13,9 +13,11 @@
 #include <optional>
 #include <stdexcept>
 
+#include "app/render/display_frame.h"
 #include "app/render/instrument_actors.h"
 #include "app/render/membrane_sheet.h"
 #include "app/render/organ_surface.h"
+#include "app/render/scope_pose.h"
 #include "app/render/smoke_sprites.h"
 #include "app/render/tissue_texture.h"
 #include "physics/mesh/mesh_topology.h"
@@ -82,19 +84,27 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
   impl_->sizes = {impl_->liver->num_vertices(), impl_->liver->num_triangles(), impl_->gallbladder->num_vertices(),
                   impl_->gallbladder->num_triangles(), impl_->instruments.size()};
 
-  // The laparoscope: camera at the port looking at the target, cranial up, its own light.
+  // The laparoscope: the camera at the scope's tip (display frame: mirrored, display_frame.h).
+  const ScopePose pose = ScopePoseOf(scope);
   vtkCamera* camera = r.GetActiveCamera();
-  camera->SetPosition(scope.position_m.data());
-  camera->SetFocalPoint(scope.look_at_m.data());
-  camera->SetViewUp(0, 0, 1);
-  camera->OrthogonalizeViewUp();
+  camera->SetPosition(ToDisplay(pose.eye_W).data());
+  camera->SetFocalPoint(ToDisplay(scope.look_at_m).data());
+  camera->SetViewUp(ToDisplay(pose.up_W).data());
   camera->SetViewAngle(scope.view_angle_deg);
   r.ResetCameraClippingRange();
+  // The scope's light leaves its tip: near tissue bright, far tissue dark. VTK's attenuation is
+  // 1 / (c0 + c1 r + c2 r^2); this one is 1 at the working distance, 2.5x at the lens, 0.36x at
+  // twice the distance (an inverse square softened near the tip, as a scope's diffuser does).
   r.RemoveAllLights();
+  const double working_distance_m = (scope.look_at_m - pose.eye_W).norm();
   auto light = Ptr<vtkLight>::New();
   light->SetLightTypeToHeadlight();
-  light->SetIntensity(1.1);
+  light->SetPositional(1);
+  light->SetConeAngle(180);  // no cone: the whole field is lit
+  light->SetAttenuationValues(0.4, 0.0, 0.6 / (working_distance_m * working_distance_m));
+  light->SetIntensity(1.15);
   r.AddLight(light);
+  r.SetTwoSidedLighting(1);
 }
 
 LaparoscopeView::~LaparoscopeView() = default;

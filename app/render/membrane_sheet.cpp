@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "app/render/burn_colours.h"
+#include "app/render/display_frame.h"
 #include "app/render/render_colours.h"
 
 namespace vesica::app {
@@ -38,7 +39,7 @@ void MembraneSheet::Update(const physics::Vertices& vertices, const physics::Tri
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(vertices.rows());
-  for (Eigen::Index v = 0; v < vertices.rows(); ++v) points->SetPoint(v, vertices(v, 0), vertices(v, 1), vertices(v, 2));
+  for (Eigen::Index v = 0; v < vertices.rows(); ++v) points->SetPoint(v, ToDisplay(vertices.row(v).transpose()).data());
   // Removed triangles are left out of the cells rather than drawn with alpha 0, so a cut
   // membrane leaves exactly the picture without it.
   auto cells = vtkSmartPointer<vtkCellArray>::New();
@@ -49,7 +50,7 @@ void MembraneSheet::Update(const physics::Vertices& vertices, const physics::Tri
     const float o = opacity.empty() ? 1.0f : Unit(opacity[f]);
     const auto alpha = static_cast<unsigned char>(std::lround(255.0 * kMembraneAlpha * o));
     if (alpha == 0) continue;
-    const vtkIdType ids[3] = {triangles(f, 0), triangles(f, 1), triangles(f, 2)};
+    const vtkIdType ids[3] = {triangles(f, 0), triangles(f, 2), triangles(f, 1)};  // mirrored: reversed
     cells->InsertNextCell(3, ids);
     const auto c = BurnedColour(kMembraneRgb, 1.0, burn.empty() ? 0.0f : burn[f]);
     const unsigned char rgba[4] = {c[0], c[1], c[2], alpha};

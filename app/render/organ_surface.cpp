@@ -16,6 +16,7 @@
 #include <cmath>
 
 #include "app/render/burn_colours.h"
+#include "app/render/display_frame.h"
 #include "app/render/vertex_normals.h"
 
 namespace vesica::app {
@@ -52,7 +53,7 @@ OrganSurface::OrganSurface(const physics::TriangleMesh& rest, const double rgb[3
   colours->SetNumberOfTuples(n_corners);
   auto cells = vtkSmartPointer<vtkCellArray>::New();
   for (vtkIdType f = 0; f < rest_.num_triangles(); ++f) {
-    const vtkIdType ids[3] = {3 * f, 3 * f + 1, 3 * f + 2};
+    const vtkIdType ids[3] = {3 * f, 3 * f + 2, 3 * f + 1};  // reversed: the display frame is mirrored
     cells->InsertNextCell(3, ids);
   }
   poly_ = vtkSmartPointer<vtkPolyData>::New();
@@ -114,8 +115,9 @@ void OrganSurface::WriteGeometry(const physics::Vertices& vertices) {
       const int v = rest_.triangles(f, k);
       const std::size_t corner = 3 * (3 * static_cast<std::size_t>(f) + k);
       for (int c = 0; c < 3; ++c) {
-        xyz[corner + c] = vertices(v, c);
-        nrm[corner + c] = static_cast<float>(normals(v, c));
+        const double mirror = c == 0 ? -1.0 : 1.0;  // display frame (display_frame.h)
+        xyz[corner + c] = mirror * vertices(v, c);
+        nrm[corner + c] = static_cast<float>(mirror * normals(v, c));
       }
     }
   poly_->GetPoints()->Modified();

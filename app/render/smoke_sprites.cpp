@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "app/render/burn_colours.h"
+#include "app/render/display_frame.h"
 #include "app/render/render_colours.h"
 
 namespace vesica::app {
@@ -59,7 +60,7 @@ void SmokeSprites::Update(const std::vector<SmokeSprite>& smoke) {
   for (const auto& s : smoke) {
     const auto alpha = static_cast<unsigned char>(std::lround(255.0 * Unit(static_cast<float>(s.alpha))));
     if (alpha == 0 || s.size_m <= 0) continue;
-    points->InsertNextPoint(s.p_W.data());
+    points->InsertNextPoint(ToDisplay(s.p_W).data());
     radius->InsertNextValue(static_cast<float>(0.5 * s.size_m));
     const unsigned char rgba[4] = {static_cast<unsigned char>(std::lround(255 * kSmokeRgb[0])),
                                    static_cast<unsigned char>(std::lround(255 * kSmokeRgb[1])),

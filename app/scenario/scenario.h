@@ -58,8 +58,9 @@ struct Trocar {
 };
 
 struct LaparoscopeConfig {
-  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  ///< the port (remote centre) on the abdominal wall
   Eigen::Vector3d look_at_m = Eigen::Vector3d::Zero();
+  double insertion_m = 0.07;    ///< the scope's tip (camera and light) this far in from the port, toward look_at
   double view_angle_deg = 70;   ///< vertical field of view
   double scope_angle_deg = 30;  ///< angled-scope tip (0 or 30 degrees in practice)
 };

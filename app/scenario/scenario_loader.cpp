@@ -305,6 +305,9 @@ Scenario ParseScenario(std::string_view text, const fs::path& source_name, const
     s.laparoscope.look_at_m = t.Vector3("look_at_m");
     if ((s.laparoscope.look_at_m - s.laparoscope.position_m).norm() < 1e-3)
       t.Fail(t.table().get("look_at_m"), "look_at_m", "must be at least 1 mm from position_m");
+    s.laparoscope.insertion_m = t.NumberIn("insertion_m", 0.0, 0.3, 0.07);
+    if (s.laparoscope.insertion_m > (s.laparoscope.look_at_m - s.laparoscope.position_m).norm() - 0.01)
+      t.Fail(t.table().get("insertion_m"), "insertion_m", "puts the scope's tip within 1 cm of (or past) look_at_m");
     s.laparoscope.view_angle_deg = t.NumberIn("view_angle_deg", 1.0, 179.0, 70.0);
     s.laparoscope.scope_angle_deg = t.NumberIn("scope_angle_deg", -1.0, 90.0, 30.0);
     t.RejectUnknownKeys();

@@ -170,5 +170,19 @@ TEST(ScreenProjectionTest, LookAtPointLandsInTheImageCentre) {
   EXPECT_LT(testing::ProjectToPixel(scope, scope.look_at_m + Eigen::Vector3d(0, 0, 0.01), 640, 360).y(), 180);
 }
 
+TEST(ScreenProjectionTest, SeenFromTheFeetThePatientsRightIsOnTheLeftAndTheWallAtTheTop) {
+  // A scope from the umbilicus looking cranially, as at the operation: the liver's right lobe
+  // (-x, the patient's right) on the image's left, the anterior wall (+y) at its top.
+  LaparoscopeConfig scope;
+  scope.position_m = {0.0, 0.1, -0.1};
+  scope.look_at_m = {0.0, 0.0, 0.05};
+  scope.insertion_m = 0.05;
+  scope.view_angle_deg = 50;
+  const Eigen::Vector2d centre = testing::ProjectToPixel(scope, scope.look_at_m, 640, 360);
+  EXPECT_LT(testing::ProjectToPixel(scope, scope.look_at_m + Eigen::Vector3d(-0.01, 0, 0), 640, 360).x(), centre.x());
+  EXPECT_GT(testing::ProjectToPixel(scope, scope.look_at_m + Eigen::Vector3d(0.01, 0, 0), 640, 360).x(), centre.x());
+  EXPECT_LT(testing::ProjectToPixel(scope, scope.look_at_m + Eigen::Vector3d(0, 0.01, 0), 640, 360).y(), centre.y());
+}
+
 }  // namespace
 }  // namespace vesica::app

@@ -472,10 +472,10 @@ TEST_F(SessionRenderTest, ReplayedRecordingRendersJawsClosingAndTheGallbladderWh
       amber_before += IsSlipAmber(open.at(col, row));
       if (IsSlipAmber(slip.at(col, row))) {
         ++amber;
-        amber_near += Distance(tip_px, col, row) < 90;
+        amber_near += Distance(tip_px, col, row) < 120;  // the 18 mm jaws span ~100 px from the scope's tip
       }
     }
-  std::printf("slip: %d amber pixels (%d within 90 px of the grasper tip), %d without the slip\n", amber, amber_near,
+  std::printf("slip: %d amber pixels (%d within 120 px of the grasper tip), %d without the slip\n", amber, amber_near,
               amber_before);
   EXPECT_EQ(amber_before, 0);
   EXPECT_GT(amber, 40);
