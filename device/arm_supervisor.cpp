@@ -1,0 +1,74 @@
+#include "device/arm_supervisor.h"
+
+#include <utility>
+
+namespace vesica::device {
+
+ArmSupervisor::ArmSupervisor(CanArm& arm, ArmSupervisorConfig config) : arm_(arm), config_(std::move(config)) {}
+
+void ArmSupervisor::RequestFaultReset() { reset_requested_.store(true); }
+
+void ArmSupervisor::Tick(fp::Nanoseconds now) {
+  const std::int64_t t = now.count();
+  const DeviceStatus status = arm_.Status();
+  const fp::FaultCode fault = arm_.node_fault();
+  std::lock_guard lock(mu_);
+  if (first_tick_ns_ < 0) first_tick_ns_ = t;
+  silent_too_long_ = !arm_.answered() && t - first_tick_ns_ >= config_.no_answer_after.count();
+
+  if (reset_requested_.exchange(false)) {
+    arm_.ResetFault();
+    ++requested_resets_;
+    last_reset_ns_ = t;
+    fault_seen_ns_ = -1;
+    return;
+  }
+  // kNodeFault is only reported while states arrive (a lost link reads kLinkLost), so a watchdog
+  // fault seen here for watchdog_reset_after has outlived the gap in commands that caused it.
+  if (status != DeviceStatus::kNodeFault || fault != fp::FaultCode::CommandWatchdog) {
+    fault_seen_ns_ = -1;
+    return;
+  }
+  if (fault_seen_ns_ < 0) fault_seen_ns_ = t;
+  const bool settled = t - fault_seen_ns_ >= config_.watchdog_reset_after.count();
+  const bool may_retry = last_reset_ns_ < 0 || t - last_reset_ns_ >= config_.reset_retry_period.count();
+  if (settled && may_retry) {
+    arm_.ResetFault();
+    ++automatic_resets_;
+    last_reset_ns_ = t;
+  }
+}
+
+std::string ArmSupervisor::Describe(const ArmSupervisorConfig& config, DeviceStatus status, fp::FaultCode fault,
+                                    bool answered, bool silent_too_long) {
+  const std::string head = config.name + ": ";
+  switch (status) {
+    case DeviceStatus::kOk:
+      return head + "ok";
+    case DeviceStatus::kNodeFault:
+      return head + "FAULT " + (fault == fp::FaultCode::None ? std::string("(reading the node's fault history)")
+                                                               : std::string(fp::to_string(fault)));
+    case DeviceStatus::kLinkLost:
+      return head + "link lost";
+    case DeviceStatus::kConnecting:
+      if (silent_too_long) return head + "no answer from " + (config.link.empty() ? "the node" : config.link);
+      return head + (answered ? "connecting" : "waiting for " + (config.link.empty() ? "the node" : config.link));
+    default:
+      return head + std::string(ToString(status));
+  }
+}
+
+ArmReport ArmSupervisor::Report() const {
+  ArmReport r;
+  r.status = arm_.Status();
+  r.fault = r.status == DeviceStatus::kNodeFault ? arm_.node_fault() : fp::FaultCode::None;
+  r.link_losses = arm_.link_loss_count();
+  const bool answered = arm_.answered();
+  std::lock_guard lock(mu_);
+  r.automatic_fault_resets = automatic_resets_;
+  r.requested_fault_resets = requested_resets_;
+  r.text = Describe(config_, r.status, r.fault, answered, silent_too_long_);
+  return r;
+}
+
+}  // namespace vesica::device
