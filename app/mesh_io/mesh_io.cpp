@@ -48,6 +48,9 @@ std::string Extension(const fs::path& path) {
 }
 
 void RequireReadable(const fs::path& path) {
+  std::error_code ec;
+  // A directory opens as a stream on Linux: say what it is rather than what VTK makes of it.
+  if (fs::is_directory(path, ec)) throw MeshError(path.string() + ": is a directory, not a mesh file");
   std::ifstream probe(path);
   if (!probe) throw MeshError(path.string() + ": cannot open file for reading");
 }

@@ -215,6 +215,16 @@ TEST_F(MeshIoTest, MissingFileAndUnknownFormat) {
               HasSubstr("mesh.xyz: unsupported mesh format '.xyz'"));
 }
 
+TEST_F(MeshIoTest, DirectoryIsNamedAsSuch) {
+  const fs::path d = dir_ / "liver.vtk";
+  fs::create_directories(d);
+  EXPECT_EQ(ErrorOf([&] { ReadTriangleMesh(d, physics::SurfaceRequirement::kAny); }),
+            d.string() + ": is a directory, not a mesh file");
+  const fs::path g = dir_ / "gallbladder.vtu";
+  fs::create_directories(g);
+  EXPECT_EQ(ErrorOf([&] { ReadTetrahedralMesh(g); }), g.string() + ": is a directory, not a mesh file");
+}
+
 TEST_F(MeshIoTest, WrongCellTypeIsNamed) {
   const fs::path p = dir_ / "hex.vtk";
   std::ofstream(p) << "# vtk DataFile Version 3.0\nhex\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n"
