@@ -52,6 +52,16 @@ DeviceStatus CanArm::Open() {
     last_error_ = "CanArmConfig: loss_timeout, velocity_filter_hz must be > 0, force_ramp_s >= 0";
     return DeviceStatus::kInvalidArgument;
   }
+  // The node refuses a watchdog outside its parameter range and keeps its own (3 ms), which a
+  // host without real-time scheduling trips many times a minute: refuse it here, by name.
+  const fp::ParameterSpec* wd = fp::find_parameter(fp::param::kWatchdogTimeout_us);
+  const auto wd_us = static_cast<double>(config_.node_watchdog_timeout.count());
+  if (wd_us != 0.0 && (wd_us < wd->min || wd_us > wd->max)) {
+    last_error_ = "CanArmConfig.node_watchdog_timeout must be 0 (keep the node's) or " +
+                  std::to_string(static_cast<long>(wd->min)) + ".." + std::to_string(static_cast<long>(wd->max)) +
+                  " us, got " + std::to_string(config_.node_watchdog_timeout.count()) + " us";
+    return DeviceStatus::kInvalidArgument;
+  }
   link_ = LinkMonitor(config_.loss_timeout.count());
   state_sequence_.reset();
   negotiated_ = false;

@@ -124,6 +124,14 @@ TEST(CanArmTest, RejectsBadInputWithNamedErrors) {
   EXPECT_NE(rig.arm->last_error().find("insertion.torque_constant_Nm_per_A"), std::string::npos);
   EXPECT_EQ(rig.arm->Status(), DeviceStatus::kNotOpen);
 
+  // A watchdog the node would refuse (it keeps its 3 ms and trips on a loaded host).
+  CanArmConfig slow_watchdog;
+  slow_watchdog.node_watchdog_timeout = 150ms;
+  BridgeRig refused(slow_watchdog);
+  EXPECT_EQ(refused.arm->Open(), DeviceStatus::kInvalidArgument);
+  EXPECT_EQ(refused.arm->last_error(),
+            "CanArmConfig.node_watchdog_timeout must be 0 (keep the node's) or 500..100000 us, got 150000 us");
+
   BridgeRig good;
   good.arm->Open();
   good.Run(0.1);
