@@ -23,9 +23,10 @@ namespace vesica::app {
 
 /// The link timing the bridge gives its arms on a host without real-time scheduling, chosen from
 /// the measurement under load in docs/protocol.md ("Link timing on a loaded host"): the longest
-/// silence between joint states seen at load 10-15 on 2 cores was 275 ms, the longest gap
-/// between the bridge's commands 142 ms; the node accepts a watchdog of at most 100 ms.
-inline constexpr std::chrono::milliseconds kBridgeLossTimeout{500};
+/// silence between joint states seen at load 10-15 on 2 cores was 471 ms (twice that: no
+/// flapping), the longest gap between the bridge's commands 250 ms; the node accepts a watchdog
+/// of at most 100 ms, and the bridge clears the few trips it still gets.
+inline constexpr std::chrono::milliseconds kBridgeLossTimeout{1000};
 inline constexpr std::chrono::milliseconds kBridgeNodeWatchdog{100};
 
 struct ArmBridgeOptions {
