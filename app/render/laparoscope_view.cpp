@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "app/render/display_frame.h"
+#include "app/render/field_status_overlay.h"
 #include "app/render/instrument_actors.h"
 #include "app/render/membrane_sheet.h"
 #include "app/render/organ_surface.h"
@@ -36,6 +37,7 @@ struct LaparoscopeView::Impl {
   MembraneSheet membrane;
   SmokeSprites smoke;
   std::vector<InstrumentActors> instruments;
+  std::optional<FieldStatusOverlay> status;
   std::vector<physics::InstrumentPose> poses;
   RenderFrameSizes sizes;
   // RenderToPng's off-screen window, kept for the view's life: a window made and destroyed per
@@ -81,6 +83,10 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
     impl_->poses.push_back(f.pose);
     impl_->instruments.push_back(std::move(ia));
   }
+  int grasper = -1, hook = -1;
+  for (std::size_t i = 0; i < scenario.instruments.size(); ++i)
+    (scenario.instruments[i].kind == InstrumentKind::kGrasper ? grasper : hook) = static_cast<int>(i);
+  impl_->status.emplace(&r, grasper, hook);
   impl_->sizes = {impl_->liver->num_vertices(), impl_->liver->num_triangles(), impl_->gallbladder->num_vertices(),
                   impl_->gallbladder->num_triangles(), impl_->instruments.size()};
 
@@ -111,6 +117,8 @@ LaparoscopeView::~LaparoscopeView() = default;
 
 vtkRenderer* LaparoscopeView::renderer() { return impl_->renderer; }
 
+const FieldStatusOverlay& LaparoscopeView::status() const { return *impl_->status; }
+
 const std::vector<physics::InstrumentPose>& LaparoscopeView::poses() const { return impl_->poses; }
 
 const RenderFrameSizes& LaparoscopeView::frame_sizes() const { return impl_->sizes; }
@@ -135,6 +143,7 @@ void LaparoscopeView::Update(const RenderFrame& frame) {
     m.instruments[i].Update(frame.instruments[i]);
     m.poses[i] = frame.instruments[i].pose;
   }
+  m.status->Update(frame);
   // Deformed organs may leave the clipping range set for the rest shape.
   m.renderer->ResetCameraClippingRange();
 }

@@ -20,6 +20,8 @@ class vtkRenderWindow;
 
 namespace vesica::app {
 
+class FieldStatusOverlay;
+
 class LaparoscopeView {
  public:
   /// The gallbladder is drawn from physics::ExtractBoundary(meshes.gallbladder).surface, the
@@ -30,6 +32,8 @@ class LaparoscopeView {
   LaparoscopeView& operator=(const LaparoscopeView&) = delete;
 
   vtkRenderer* renderer();
+  /// The grasp, pedal and arm labels in the field (their text, for tests).
+  const FieldStatusOverlay& status() const;
 
   /// Initial instrument poses: each shaft aimed from its trocar at the laparoscope's target.
   const std::vector<physics::InstrumentPose>& poses() const;

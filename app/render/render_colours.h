@@ -21,6 +21,9 @@ inline constexpr double kMembraneAlpha = 0.6;
 inline constexpr double kSmokeRgb[3] = {0.86, 0.86, 0.84};
 /// Grasper jaws while a grasp has slipped: amber-red warning.
 inline constexpr double kSlipRgb[3] = {1.0, 0.35, 0.0};
+/// The field's status labels: a grasp that holds (muted green), nothing to report (grey).
+inline constexpr double kStatusOkRgb[3] = {0.55, 0.85, 0.55};
+inline constexpr double kStatusIdleRgb[3] = {0.70, 0.70, 0.70};
 /// Cautery hook tip while cutting: glowing orange-white.
 inline constexpr double kCauteryGlowRgb[3] = {1.0, 0.75, 0.35};
 

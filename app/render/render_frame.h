@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "physics/instrument/instrument_pose.h"
@@ -24,6 +25,7 @@ struct InstrumentFrame {
   bool grasping = false;          ///< jaws holding tissue
   bool slipping = false;          ///< a grasp slipped recently: the jaws are highlighted
   bool cautery_active = false;    ///< hook pedal down and touching: the hook tip glows
+  bool pedal_down = false;        ///< the instrument's pedal is pressed (shown in the field, touching or not)
 };
 
 /// Sizes below are checked by ValidateRenderFrame; "empty" entries mean "as at rest / untouched".
@@ -38,6 +40,9 @@ struct RenderFrame {
   std::vector<float> membrane_burn;        ///< #membrane_triangles, [0,1]; empty = unburned
   std::vector<SmokeSprite> smoke;
   std::vector<InstrumentFrame> instruments;  ///< one per scenario instrument, in scenario order; empty = keep poses
+  /// One line per haptic arm for the field's status strip ("left arm ok", "right arm FAULT
+  /// overcurrent"); empty when no arm drives the session (keyboard, replay).
+  std::vector<std::string> arm_status;
 };
 
 /// The scene sizes a frame must match.

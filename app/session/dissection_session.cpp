@@ -130,6 +130,7 @@ RenderFrame DissectionSession::MakeRenderFrame() const {
   for (size_t i = 0; i < 2; ++i) {
     InstrumentFrame inst;
     inst.pose = last_input_[i].pose;
+    inst.pedal_down = last_input_[i].pedal;
     if (i == 0) {
       inst.grasping = scene_.grasp().state() == physics::GraspStateMachine::State::kHolding;
       inst.slipping = scene_.time_s() - last_slip_s_[0] < 0.5;

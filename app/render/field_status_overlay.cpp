@@ -1,0 +1,80 @@
+#include "app/render/field_status_overlay.h"
+
+#include <vtkRenderer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+
+#include "app/render/render_colours.h"
+
+namespace vesica::app {
+
+namespace {
+
+vtkSmartPointer<vtkTextActor> Label(vtkRenderer* renderer, int justification, double x, double y) {
+  auto label = vtkSmartPointer<vtkTextActor>::New();
+  label->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  label->GetPositionCoordinate()->SetValue(x, y);
+  auto* p = label->GetTextProperty();
+  p->SetFontFamilyToArial();
+  p->SetBold(1);
+  p->SetFontSize(18);
+  p->SetJustification(justification);
+  p->SetVerticalJustificationToBottom();
+  p->SetBackgroundColor(0, 0, 0);
+  p->SetBackgroundOpacity(0.45);  // legible over bright tissue, the field still seen through it
+  renderer->AddActor2D(label);
+  return label;
+}
+
+void Show(vtkTextActor* label, const std::string& text, const double rgb[3]) {
+  label->SetInput(text.c_str());
+  label->GetTextProperty()->SetColor(rgb[0], rgb[1], rgb[2]);
+  label->SetVisibility(!text.empty());
+}
+
+}  // namespace
+
+FieldStatusOverlay::FieldStatusOverlay(vtkRenderer* renderer, int grasper, int hook)
+    : grasper_(grasper), hook_(hook) {
+  grasp_ = Label(renderer, VTK_TEXT_LEFT, 0.015, 0.02);
+  pedal_ = Label(renderer, VTK_TEXT_RIGHT, 0.985, 0.02);
+  arms_ = Label(renderer, VTK_TEXT_CENTERED, 0.5, 0.02);
+  Update(RenderFrame{});
+}
+
+void FieldStatusOverlay::Update(const RenderFrame& frame) {
+  const auto instrument = [&](int i) -> const InstrumentFrame* {
+    return i >= 0 && static_cast<std::size_t>(i) < frame.instruments.size() ? &frame.instruments[i] : nullptr;
+  };
+  if (const InstrumentFrame* g = instrument(grasper_)) {
+    if (g->slipping)
+      Show(grasp_, "GRASP SLIPPED", kSlipRgb);
+    else if (g->grasping)
+      Show(grasp_, "grasper: holding", kStatusOkRgb);
+    else
+      Show(grasp_, "grasper: empty", kStatusIdleRgb);
+  } else {
+    Show(grasp_, "", kStatusIdleRgb);
+  }
+  if (const InstrumentFrame* h = instrument(hook_)) {
+    if (h->pedal_down)
+      Show(pedal_, h->cautery_active ? "CUT  (burning)" : "CUT  pedal down", kCauteryGlowRgb);
+    else
+      Show(pedal_, "hook: pedal up", kStatusIdleRgb);
+  } else {
+    Show(pedal_, "", kStatusIdleRgb);
+  }
+  std::string arms;
+  bool arm_fault = false;
+  for (const std::string& line : frame.arm_status) {
+    arms += (arms.empty() ? "" : "   ") + line;
+    arm_fault = arm_fault || line.find(" ok") == std::string::npos;
+  }
+  Show(arms_, arms, arm_fault ? kSlipRgb : kStatusIdleRgb);
+}
+
+std::string FieldStatusOverlay::grasp_text() const { return grasp_->GetVisibility() ? grasp_->GetInput() : ""; }
+std::string FieldStatusOverlay::pedal_text() const { return pedal_->GetVisibility() ? pedal_->GetInput() : ""; }
+std::string FieldStatusOverlay::arm_text() const { return arms_->GetVisibility() ? arms_->GetInput() : ""; }
+
+}  // namespace vesica::app
