@@ -16,9 +16,10 @@ namespace vesica::app {
 
 namespace {
 
-/// VTK's error text is "ERROR: In SOURCE.cxx, line N\nvtkClass (0x...): REASON\n\n": the REASON.
+/// VTK's error text is "ERROR: In SOURCE.cxx, line N\nvtkClass (0x...): REASON\n\n" (a generic
+/// warning's "Generic Warning: In SOURCE.cxx, line N\nREASON\n\n"): the REASON.
 std::string VtkReason(std::string text) {
-  if (text.rfind("ERROR: In ", 0) == 0)
+  if (text.rfind("ERROR: In ", 0) == 0 || text.rfind("Generic Warning: In ", 0) == 0)
     if (const auto nl = text.find('\n'); nl != std::string::npos) text.erase(0, nl + 1);
   if (const auto at = text.find("): "); at != std::string::npos && text.rfind("vtk", 0) == 0) text.erase(0, at + 3);
   std::replace(text.begin(), text.end(), '\n', ' ');
@@ -28,15 +29,16 @@ std::string VtkReason(std::string text) {
 
 }  // namespace
 
-/// While installed, VTK's error texts from objects nobody observes go to `sink` instead of
-/// stderr; other texts pass on to the previous window.
+/// While installed, VTK's error texts from objects nobody observes go to `error`, and its generic
+/// warnings (what the legacy reader says of data it cannot parse, before it returns garbage) to
+/// `warning`, instead of stderr; other texts pass on to the previous window.
 class CapturingOutputWindow : public vtkOutputWindow {
  public:
   static CapturingOutputWindow* New();
   vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow)
 
-  void DisplayErrorText(const char* text) override {
-    if (sink && sink->empty() && text) *sink = VtkReason(text);
+      void DisplayErrorText(const char* text) override {
+    if (error && error->empty() && text) *error = VtkReason(text);
   }
   void DisplayText(const char* text) override {
     if (previous) previous->DisplayText(text);
@@ -45,13 +47,14 @@ class CapturingOutputWindow : public vtkOutputWindow {
     if (previous) previous->DisplayWarningText(text);
   }
   void DisplayGenericWarningText(const char* text) override {
-    if (previous) previous->DisplayGenericWarningText(text);
+    if (warning && warning->empty() && text) *warning = VtkReason(text);
   }
   void DisplayDebugText(const char* text) override {
     if (previous) previous->DisplayDebugText(text);
   }
 
-  std::string* sink = nullptr;
+  std::string* error = nullptr;
+  std::string* warning = nullptr;
   vtkSmartPointer<vtkOutputWindow> previous;
 };
 vtkStandardNewMacro(CapturingOutputWindow);
@@ -66,14 +69,19 @@ VtkReaderErrors::VtkReaderErrors(vtkAlgorithm* reader)
   reader->AddObserver(vtkCommand::ErrorEvent, callback_);
   reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, callback_);
   window_->previous = vtkOutputWindow::GetInstance();
-  window_->sink = &message_;
+  window_->error = &message_;
+  window_->warning = &warning_;
   vtkOutputWindow::SetInstance(window_);
 }
 
 VtkReaderErrors::~VtkReaderErrors() { vtkOutputWindow::SetInstance(window_->previous); }
 
 void VtkReaderErrors::ThrowIfAny(const std::filesystem::path& path) const {
-  if (!message_.empty()) throw physics::MeshError(path.string() + ": cannot be read: " + message_);
+  if (message_.empty() && warning_.empty()) return;
+  // The warning, when there is one, came first: the cause of the error that followed.
+  const std::string reason =
+      warning_.empty() ? message_ : message_.empty() ? warning_ : warning_ + " (then: " + message_ + ")";
+  throw physics::MeshError(path.string() + ": cannot be read: " + reason);
 }
 
 }  // namespace vesica::app

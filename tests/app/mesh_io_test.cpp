@@ -86,7 +86,16 @@ TEST_F(MeshIoTest, VtksOwnReasonIsKept) {
   const fs::path p = dir_ / "nan.vtk";  // the NaN stops VTK's legacy ASCII reader
   WriteTriangleMesh(sphere, p);
   EXPECT_EQ(ErrorOf([&] { ReadTriangleMesh(p, physics::SurfaceRequirement::kAny); }),
-            p.string() + ": cannot be read: Unrecognized keyword: nan");
+            p.string() +
+                ": cannot be read: Error reading ascii data. Possible mismatch of datasize with declaration. (then: "
+                "Unrecognized keyword: nan)");
+  // A POINTS section cut short: VTK only warns, and returned garbage coordinates (1e299) as points.
+  const fs::path short_points = dir_ / "short_points.vtk";
+  std::ofstream(short_points) << "# vtk DataFile Version 3.0\nshort\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n"
+                                 "0 0 0 0.1 0 0\n";
+  EXPECT_EQ(ErrorOf([&] { ReadTriangleMesh(short_points, physics::SurfaceRequirement::kAny); }),
+            short_points.string() +
+                ": cannot be read: Error reading ascii data. Possible mismatch of datasize with declaration.");
   // The reason of a helper nobody observes (the XML parser), not the reader's summary.
   const fs::path xml = dir_ / "not_xml.vtp";
   std::ofstream(xml) << "this is not XML\n";
