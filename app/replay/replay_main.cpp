@@ -7,6 +7,7 @@
 // tenth of a replay of more than kPlainProgressMinSteps steps.
 
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -20,8 +21,6 @@
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <unistd.h>
 
 #include "app/render/laparoscope_view.h"
 #include "app/render/scene_meshes.h"
@@ -49,8 +48,9 @@ class ReplayProgress {
   ReplayProgress(ProgressStyle style, long total_steps, double session_s)
       : total_steps_(total_steps), session_s_(session_s) {
     if (style == ProgressStyle::kAuto)
-      style = isatty(STDERR_FILENO) ? ProgressStyle::kAuto : total_steps >= kPlainProgressMinSteps ? ProgressStyle::kLines
-                                                                                                    : ProgressStyle::kNone;
+      style = isatty(STDERR_FILENO)                   ? ProgressStyle::kAuto
+              : total_steps >= kPlainProgressMinSteps ? ProgressStyle::kLines
+                                                      : ProgressStyle::kNone;
     live_ = style == ProgressStyle::kAuto;
     lines_ = style == ProgressStyle::kLines;
   }

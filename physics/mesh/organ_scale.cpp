@@ -24,11 +24,11 @@ void CheckOrganScale(const Vertices& vertices, const std::string& source) {
   if (largest >= kMinOrganExtent_m && largest <= kMaxOrganExtent_m) return;
   std::ostringstream os;
   os.precision(3);
-  os << source << ": wrong units or scale: the mesh spans " << extent.x() << " x " << extent.y() << " x "
-     << extent.z() << " m (from (" << lo.x() << ", " << lo.y() << ", " << lo.z() << ") to (" << hi.x() << ", "
-     << hi.y() << ", " << hi.z() << ")); an organ mesh spans " << kMinOrganExtent_m << " to " << kMaxOrganExtent_m
-     << " m, in metres";
-  if (largest > kMaxOrganExtent_m && largest <= 1000 * kMaxOrganExtent_m) os << " (is the file in millimetres or centimetres?)";
+  os << source << ": wrong units or scale: the mesh spans " << extent.x() << " x " << extent.y() << " x " << extent.z()
+     << " m (from (" << lo.x() << ", " << lo.y() << ", " << lo.z() << ") to (" << hi.x() << ", " << hi.y() << ", "
+     << hi.z() << ")); an organ mesh spans " << kMinOrganExtent_m << " to " << kMaxOrganExtent_m << " m, in metres";
+  if (largest > kMaxOrganExtent_m && largest <= 1000 * kMaxOrganExtent_m)
+    os << " (is the file in millimetres or centimetres?)";
   throw MeshError(os.str());
 }
 

@@ -90,7 +90,8 @@ bool CrossAtSharedVertex(const Tri& a, const Vec& n_a, const Tri& b, const Vec& 
     if (InsideWedge(n_a, u, v, r) || InsideWedge(n_a, u, v, w) || InsideWedge(n_a, r, w, u) ||
         InsideWedge(n_a, r, w, v))
       return true;
-    return (SameDirection(n_a, u, r) && SameDirection(n_a, v, w)) || (SameDirection(n_a, u, w) && SameDirection(n_a, v, r));
+    return (SameDirection(n_a, u, r) && SameDirection(n_a, v, w)) ||
+           (SameDirection(n_a, u, w) && SameDirection(n_a, v, r));
   }
   // Otherwise they meet on the line of the two planes, in a segment from the shared corner whose
   // far end is where the edge opposite that corner, in one or the other, passes through.

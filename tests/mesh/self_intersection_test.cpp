@@ -68,7 +68,7 @@ TEST(SelfIntersectionTest, InterpenetratingTetrahedraGiveTheirCrossingPairs) {
 
 TEST(SelfIntersectionTest, PairWithoutSharedVertex) {
   Vertices v(6, 3);
-  v << 0, 0, 0, 1, 0, 0, 0, 1, 0,  // in z = 0
+  v << 0, 0, 0, 1, 0, 0, 0, 1, 0,          // in z = 0
       0.2, 0.2, -1, 0.2, 0.2, 1, 2, 2, 0;  // its edge (3, 4) passes through the first at (0.2, 0.2, 0)
   EXPECT_TRUE(TrianglesCross(Pair(v, {0, 1, 2}, {3, 4, 5}), 0, 1));
   v.row(3) << 0.2, 0.2, 0.5;  // above the plane now: no crossing

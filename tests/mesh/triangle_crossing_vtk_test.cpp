@@ -1,9 +1,8 @@
 // The triangle crossing test against VTK's triangle-triangle intersection
 // (vtkIntersectionPolyDataFilter::TriangleTriangleIntersection, a Moller-type test): on random
 // pairs without shared vertices both must agree, the pair either way round.
-#include <vtkIntersectionPolyDataFilter.h>
-
 #include <gtest/gtest.h>
+#include <vtkIntersectionPolyDataFilter.h>
 
 #include <random>
 
