@@ -144,6 +144,18 @@ TEST_F(MeshIoTest, ObjWithPerFaceNormalsIsTheClosedMeshItIs) {
   // The vertices keep the file's numbers: v line k is vertex k - 1.
   EXPECT_TRUE(cube.vertices.row(6).isApprox(Eigen::RowVector3d(0.1, 0.1, 0.1), 1e-7)) << cube.vertices;
   EXPECT_EQ(cube.triangles.row(0), Eigen::RowVector3i(0, 2, 1));
+
+  // The same with texture coordinates (`f v/vt/vn`), relative indices and CRLF line ends.
+  std::string text = kCubeObjWithFaceNormals;
+  text.replace(text.find("vn 0 0 -1"), 0, "vt 0 0\nvt 1 0\nvt 0 1\n");
+  text.replace(text.find("f 1//1 3//1 2//1"), 16, "f -8/1/1 -6/2/1 -7/3/1");
+  for (std::size_t at = 0; (at = text.find("//", at)) != std::string::npos;) text.replace(at, 2, "/2/");
+  for (std::size_t at = 0; (at = text.find('\n', at)) != std::string::npos; at += 2) text.replace(at, 1, "\r\n");
+  const fs::path textured = dir_ / "cube_textured.obj";
+  std::ofstream(textured) << text;
+  const auto again = ReadTriangleMesh(textured, physics::SurfaceRequirement::kClosed);
+  EXPECT_EQ(again.triangles, cube.triangles);
+  EXPECT_EQ(again.vertices, cube.vertices);
 }
 
 TEST_F(MeshIoTest, SelfIntersectingObjIsRefusedNamingTheFacePairs) {
