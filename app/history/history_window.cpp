@@ -191,15 +191,20 @@ bool HistoryWindow::LoadTrainee(const QString& trainee_id) {
     SetStatus(QStringLiteral("Error: ") + Text(e.what()), true);
     return false;
   }
+  // A replay (or the demo) is not the trainee's own hands: listed, never a step of the curve.
   std::vector<SessionMetrics> metrics;
   metrics.reserve(sessions_.size());
-  for (const StoredSession& session : sessions_) metrics.push_back(session.record.metrics);
+  for (const StoredSession& session : sessions_)
+    if (!session.record.replay) metrics.push_back(session.record.metrics);
+  const auto replays = sessions_.size() - metrics.size();
   plot_->SetSessions(std::move(metrics));
   plot_->SetEmptyText(QStringLiteral("No sessions of %1").arg(trainee_id));
   FillTable();
   export_->setEnabled(!sessions_.empty());
-  SetStatus(QStringLiteral("%1 session(s) of %2 in %3").arg(sessions_.size()).arg(trainee_id, Text(store_.Describe())),
-            false);
+  QString status =
+      QStringLiteral("%1 session(s) of %2 in %3").arg(sessions_.size()).arg(trainee_id, Text(store_.Describe()));
+  if (replays > 0) status += QStringLiteral("; %1 replay(s) listed, not plotted").arg(replays);
+  SetStatus(status, false);
   return true;
 }
 
@@ -215,7 +220,10 @@ void HistoryWindow::FillTable() {
         QDateTime::fromSecsSinceEpoch(r.started_unix_s, Qt::UTC).toString(QStringLiteral("yyyy-MM-dd HH:mm")),
         Text(r.scenario),
         Text(FormatMinutesSeconds(m.duration_s)),
-        m.success ? QStringLiteral("yes") : QStringLiteral("no"),
+        r.replay       ? QStringLiteral("replay")
+        : r.unfinished ? QStringLiteral("unfinished")
+        : m.success    ? QStringLiteral("yes")
+                       : QStringLiteral("no"),
         QString::number(m.slips),
         Text(FormatCentimetres(m.path_length_left_m + m.path_length_right_m)),
         Text(FormatSquareMillimetres(m.liver_damage_m2)),

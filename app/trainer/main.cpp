@@ -19,6 +19,8 @@
 #include "app/render/laparoscope_view.h"
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario_loader.h"
+#include "app/trainer/quit_on_signal.h"
+#include "app/trainer/records_at_start.h"
 #include "app/trainer/trainer_app.h"
 #include "device/input/input_recording.h"
 
@@ -77,6 +79,11 @@ int main(int argc, char** argv) {
     } else if (recordings_dir != "none") {
       options.recordings_dir = recordings_dir;
     }
+    // Now, not when the first session ends: a location that cannot hold the records is an error.
+    if (!options.records_location.empty()) {
+      const std::string warning = vesica::app::CheckRecordsLocationAtStart(options.records_location);
+      if (!warning.empty()) spdlog::warn("{}", warning);
+    }
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 2;
@@ -100,6 +107,7 @@ int main(int argc, char** argv) {
     return format;
   }());
   QApplication app(argc, argv);
+  vesica::app::QuitOnTerminationSignals(app);
   vesica::app::TrainerApp trainer(options, QSize(width, height));
   if (!trainer.Open(scenario_path)) return 2;  // the error is logged
   if (quit_after_ms > 0) {
@@ -113,6 +121,7 @@ int main(int argc, char** argv) {
     });
   }
   const int status = app.exec();
+  trainer.Shutdown();  // SIGTERM, Quit or --quit-after-ms mid-session: stored as unfinished
   spdlog::info("loop rates ({}x{} window):\n{}", width, height, trainer.window()->LoopRatesSummary());
   return status;
 }

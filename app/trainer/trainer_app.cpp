@@ -2,10 +2,13 @@
 
 #include <spdlog/spdlog.h>
 
+#include <QStatusBar>
 #include <QTimer>
 #include <exception>
 #include <utility>
 
+#include "app/records/pending_sessions.h"
+#include "app/records/session_store.h"
 #include "app/render/laparoscope_view.h"
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario_loader.h"
@@ -49,7 +52,36 @@ bool TrainerApp::Open(const std::filesystem::path& scenario_path) {
   if (window_) next->move(window_->pos());
   window_ = std::move(next);
   window_->show();
+  if (!pending_checked_) StorePendingSessionsAtStart();
   return true;
+}
+
+void TrainerApp::StorePendingSessionsAtStart() {
+  pending_checked_ = true;
+  if (options_.records_location.empty()) return;
+  const auto path = PendingSessionsPath(options_.records_location);
+  std::error_code ignored;
+  if (!std::filesystem::exists(path, ignored)) return;
+  try {
+    const PendingStoreResult r = StorePendingSessions(path, *OpenSessionStore(options_.records_location));
+    if (r.left == 0) {
+      const std::string message = "Stored " + std::to_string(r.stored) + " session(s) kept from an earlier run in " +
+                                  path.string();
+      spdlog::info("{}", message);
+      window_->statusBar()->showMessage(QString::fromStdString(message));
+    } else {
+      window_->ShowError(std::to_string(r.left) + " earlier session(s) still NOT stored (" + r.error +
+                         "); they wait in " + path.string());
+      spdlog::error("{}", window_->last_error());
+    }
+  } catch (const std::exception& e) {
+    window_->ShowError(std::string("earlier sessions wait in ") + path.string() + ", not stored yet: " + e.what());
+    spdlog::error("{}", window_->last_error());
+  }
+}
+
+void TrainerApp::Shutdown() {
+  if (window_) window_->StoreUnfinishedSession();
 }
 
 }  // namespace vesica::app

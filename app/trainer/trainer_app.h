@@ -25,18 +25,26 @@ class TrainerApp {
   /// Loads the scenario, its meshes and the dissection model (seconds; the liver's Green's
   /// functions come from the cache after the first run) and shows it in a new window. Returns
   /// false when it fails to load: last_error() names the file and what is wrong, and the window
-  /// open before (if any) goes on as it was.
+  /// open before (if any) goes on as it was. The first window that opens also stores the
+  /// sessions left in the pending file by an earlier run, and says so in its status bar.
   bool Open(const std::filesystem::path& scenario_path);
+
+  /// The trainer is quitting (after the event loop ended: Quit, SIGTERM): the running session is
+  /// stored as unfinished (TrainerWindow::StoreUnfinishedSession).
+  void Shutdown();
 
   /// The window of the open scenario; null until one opened.
   TrainerWindow* window() const { return window_.get(); }
   const std::string& last_error() const { return last_error_; }
 
  private:
+  void StorePendingSessionsAtStart();
+
   TrainerOptions options_;
   QSize window_size_;
   std::unique_ptr<TrainerWindow> window_;
   std::string last_error_;
+  bool pending_checked_ = false;  // the pending file is stored once, when the first window opens
   QObject deferred_;  // context of the deferred Open calls: they die with this object
 };
 

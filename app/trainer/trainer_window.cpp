@@ -5,7 +5,10 @@
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkRenderer.h>
 
+#include <spdlog/spdlog.h>
+
 #include <QAction>
+#include <QCloseEvent>
 #include <QDockWidget>
 #include <QFileDialog>
 #include <QKeyEvent>
@@ -22,11 +25,13 @@
 
 #include "app/history/history_window.h"
 #include "app/history/metrics_panel.h"
+#include "app/records/pending_sessions.h"
 #include "app/records/session_store.h"
 #include "app/scenario/scenario_loader.h"
 #include "app/session/arm_bridge.h"
 #include "app/session/arm_input.h"
 #include "app/session/dissection_setup.h"
+#include "app/session/session_recording_file.h"
 #include "app/trainer/keyboard_control.h"
 #include "device/input/input_recording.h"
 #include "device/input/replay_input.h"
@@ -82,6 +87,11 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
   });
   open_scenario_action_->setObjectName("open_scenario");
   open_scenario_action_->setEnabled(false);
+  session->addSeparator();
+  QAction* quit = session->addAction("&Quit", [this] { close(); });
+  quit->setObjectName("quit");
+  quit->setShortcut(QKeySequence::Quit);  // Ctrl+Q
+  quit->setShortcutContext(Qt::ApplicationShortcut);
   QMenu* view_menu = menuBar()->addMenu("&View");
   view_menu->addAction("&Diagnostics overlay (F2)", [this] { diagnostics_->setVisible(!diagnostics_->isVisible()); });
   menuBar()->addAction("&History...", [this] { OpenHistory(); });
@@ -89,7 +99,18 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
   // The session's input: --replay, else what the scenario names (a replay file, haptic arms),
   // else the keyboard; Session > Input switches while running.
   model_ = std::move(model);
-  poses_ = view_->poses();
+  poses_ = initial_poses_ = view_->poses();
+  if (!options.records_location.empty())
+    saver_ = std::make_unique<SessionSaver>(options.records_location, PendingSessionsPath(options.records_location),
+                                            options.saver);
+  saving_label_ = new QLabel("saving...", this);
+  saving_label_->setObjectName("saving");
+  saving_label_->hide();
+  statusBar()->addPermanentWidget(saving_label_);
+  lag_label_ = new QLabel(this);
+  lag_label_->setObjectName("physics_lag");
+  lag_label_->hide();
+  statusBar()->addPermanentWidget(lag_label_);
   std::filesystem::path replay = options.replay_file;
   for (const InstrumentConfig& c : scenario.instruments)
     if (replay.empty() && c.input == InputKind::kReplay && !c.replay_file.empty()) replay = c.replay_file;
@@ -160,6 +181,7 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
     live_input_.reset();
   }
   runner_ = std::make_unique<SessionRunner>(model_, DefaultCauteryParams(), input, ro);
+  input_choice_ = choice;
   session_number_ = 0;
   if (choice != InputChoice::kArms) arms_.reset();  // after the runner that used it is gone
   finished_shown_ = stored_ = false;
@@ -174,8 +196,7 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
 
 void TrainerWindow::EndSession() { runner_->End(); }
 
-void TrainerWindow::EndAndStoreSession() {
-  if (finished_shown_) return;
+RunnerStatus TrainerWindow::EndAndWait() {
   runner_->End();
   // The physics thread ends the session within one step (5 ms of work); a stuck step must not
   // hang the window, so the wait is bounded and the session is stored as it stands.
@@ -184,10 +205,45 @@ void TrainerWindow::EndAndStoreSession() {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     s = runner_->Status();
   }
-  OnFinished(s);
+  return s;
+}
+
+void TrainerWindow::EndAndStoreSession() {
+  if (!finished_shown_) OnFinished(EndAndWait());
+  if (saver_) saver_->Finish(false);
+  TakeSaveResults();
+}
+
+void TrainerWindow::StoreUnfinishedSession() {
+  if (!finished_shown_) {
+    const RunnerStatus s = EndAndWait();
+    // A session nobody touched (the window opened and closed) is not a training session.
+    const bool touched = s.metrics.path_length_left_m > 0 || s.metrics.path_length_right_m > 0 ||
+                         s.metrics.cautery_on_s > 0;
+    if (touched) {
+      OnFinished(s, /*unfinished=*/true);
+    } else {
+      finished_shown_ = true;
+    }
+  }
+  if (saver_) saver_->Finish(true);  // closing: a locked database gets one try, then the pending file
+  TakeSaveResults();
+}
+
+bool TrainerWindow::saving() const { return saver_ && saver_->Busy(); }
+
+void TrainerWindow::closeEvent(QCloseEvent* event) {
+  StoreUnfinishedSession();
+  event->accept();
 }
 
 void TrainerWindow::ResetSession() {
+  // The instruments go back to the scenario's start with the tissue: set the live input before
+  // the new session samples it.
+  poses_ = initial_poses_;
+  pedal_ = false;
+  drag_instrument_ = -1;
+  if (live_input_) SendManualPoses();
   session_number_ = runner_->Reset();
   started_unix_s_ = UnixNow();
   finished_shown_ = stored_ = false;
@@ -235,43 +291,77 @@ void TrainerWindow::Tick() {
   }
   // A finished status of the session before a Reset() is not this one's.
   if (s.finished && !finished_shown_ && s.session == session_number_) OnFinished(s);
+  TakeSaveResults();
+  saving_label_->setVisible(saving());
+  // Real time is the trainee's: when physics cannot keep up, say so rather than slow the clock.
+  if (options_.real_time && s.physics_lag_s > 0.25 && !s.finished) {
+    lag_label_->setText(QString::asprintf("physics behind real time by %.1f s", s.physics_lag_s));
+    lag_label_->show();
+  } else {
+    lag_label_->hide();
+  }
 }
 
-void TrainerWindow::OnFinished(const RunnerStatus& status) {
-  finished_shown_ = true;
-  metrics_panel_->Show(status.metrics);
-  if (auto* dock = findChild<QDockWidget*>("metrics_dock")) dock->show();
-  if (!status.error.empty()) last_error_ = "physics stopped: " + status.error;
+void TrainerWindow::TakeSaveResults() {
+  if (!saver_) return;
+  for (const SaveResult& r : saver_->TakeResults()) {
+    if (r.id) {
+      if (r.ticket == save_ticket_) {  // an earlier session's save is not this one's
+        stored_id_ = r.id;
+        stored_ = true;
+      }
+      statusBar()->showMessage(QString::fromStdString(r.message + recording_note_));
+    } else {
+      ShowError(r.message + recording_note_);
+    }
+  }
+}
 
+void TrainerWindow::OnFinished(const RunnerStatus& status, bool unfinished) {
+  finished_shown_ = true;
   SessionRecord record;
   record.trainee_id = options_.trainee_id;
   record.scenario = scenario_.name;
   record.started_unix_s = started_unix_s_;
   record.ended_unix_s = std::max(started_unix_s_, UnixNow());
   record.metrics = status.metrics;
+  // The session lasted what the trainee lived (wall clock, pauses excluded), however far the
+  // simulation fell behind; the lag is kept beside it. A fast replay has only simulated time.
+  if (options_.real_time) record.metrics.duration_s = std::max(status.wall_time_s, 0.0);
+  record.physics_lag_s = options_.real_time ? status.physics_lag_s : 0.0;
   record.station = options_.station;
-  try {
-    if (!options_.recordings_dir.empty()) {
-      std::filesystem::create_directories(options_.recordings_dir);
-      char name[96];
-      std::snprintf(name, sizeof name, "session-%lld.csv", static_cast<long long>(started_unix_s_));
-      const std::filesystem::path path = options_.recordings_dir / (options_.trainee_id + "-" + name);
-      const device::InputRecording rec = runner_->Recording();
-      if (!rec.frames.empty()) {
+  record.replay = input_choice_ == InputChoice::kReplay;
+  record.unfinished = unfinished;
+  metrics_panel_->Show(record.metrics);
+  if (auto* dock = findChild<QDockWidget*>("metrics_dock")) dock->show();
+  if (!status.error.empty()) last_error_ = "physics stopped: " + status.error;
+
+  // The input recording is a bonus: when it cannot be written the session is stored without it.
+  recording_note_.clear();
+  if (!options_.recordings_dir.empty()) {
+    const device::InputRecording rec = runner_->Recording();
+    if (!rec.frames.empty()) {
+      std::filesystem::path path;
+      try {
+        path = CreateSessionRecordingFile(options_.recordings_dir, options_.trainee_id, started_unix_s_);
         device::WriteInputRecording(path, rec);
         record.input_recording_path = path.string();
+      } catch (const std::exception& e) {
+        std::error_code ignored;
+        if (!path.empty()) std::filesystem::remove(path, ignored);
+        recording_note_ = std::string("; its input recording was not saved: ") + e.what();
+        spdlog::warn("session of {}: input recording not saved: {}", options_.trainee_id, e.what());
       }
     }
-    if (!options_.records_location.empty()) {
-      stored_id_ = OpenSessionStore(options_.records_location)->Add(record);
-      stored_ = true;
-    }
-    statusBar()->showMessage(QString::fromStdString(
-        std::string("Session finished") + (stored_ ? " and saved" : "") +
-        (record.input_recording_path.empty() ? "" : "; input in " + record.input_recording_path)));
-  } catch (const std::exception& e) {
-    ShowError(std::string("could not save the session: ") + e.what());
   }
+  const std::string what = unfinished ? "Session stopped (stored as unfinished)" : "Session finished";
+  if (!saver_) {
+    statusBar()->showMessage(QString::fromStdString(what + " (not stored: no records database)" + recording_note_));
+    return;
+  }
+  save_ticket_ = saver_->Save(record);
+  statusBar()->showMessage(QString::fromStdString(what + "; saving..." + recording_note_));
+  saving_label_->show();
 }
 
 void TrainerWindow::OpenHistory() {

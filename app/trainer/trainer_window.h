@@ -16,6 +16,7 @@
 #include "app/render/laparoscope_view.h"
 #include "app/session/live_input.h"
 #include "app/session/session_runner.h"
+#include "app/trainer/session_saver.h"
 
 class QAction;
 class QLabel;
@@ -34,6 +35,7 @@ struct TrainerOptions {
   std::filesystem::path replay_file;     ///< drive the instruments from this recording
   bool real_time = true;                 ///< false: replay as fast as the physics goes (tests)
   std::string station = "vesica";
+  SaverOptions saver;                    ///< retries of a locked or unreachable database
 };
 
 class TrainerWindow : public QMainWindow {
@@ -54,8 +56,15 @@ class TrainerWindow : public QMainWindow {
   /// Ends the session and stores it before returning (when the window is about to go: another
   /// scenario was opened). Nothing to do when the session has already finished.
   void EndAndStoreSession();
-  /// Starts the session over from the rest state (as the R key does); the finished one, if it
-  /// was, stays stored and the new one is stored when it ends.
+  /// The trainer is quitting (Quit, closing the window, SIGTERM): a session still running is
+  /// ended and stored as unfinished when anything happened in it (an instrument moved, the
+  /// pedal was pressed); then every queued save is finished (or kept pending) before returning.
+  void StoreUnfinishedSession();
+  /// True while a finished session is being stored (the status bar shows "saving...").
+  bool saving() const;
+  /// Starts the session over from the rest state (as the R key does): tissue and instruments
+  /// (keyboard and mouse poses, pedal) back where the scenario puts them; the finished one, if
+  /// it was, stays stored and the new one is stored when it ends.
   void ResetSession();
   /// Session > Open scenario... asks for a scenario file and calls `open` with it (TrainerApp
   /// replaces this window). Without an opener the action is disabled.
@@ -79,10 +88,13 @@ class TrainerWindow : public QMainWindow {
 
  protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
+  void closeEvent(QCloseEvent* event) override;
 
  private:
   void Tick();  // render timer: snapshot -> view, overlay, end-of-session handling
-  void OnFinished(const RunnerStatus& status);
+  RunnerStatus EndAndWait();  // ends the session, waits (bounded) for physics to stop
+  void OnFinished(const RunnerStatus& status, bool unfinished = false);
+  void TakeSaveResults();  // the saver's news -> stored_id_, status bar
   void OpenHistory();
 
   Scenario scenario_;
@@ -94,13 +106,19 @@ class TrainerWindow : public QMainWindow {
   std::unique_ptr<SessionRunner> runner_;
   QVTKOpenGLNativeWidget* vtk_widget_ = nullptr;
   QLabel* diagnostics_ = nullptr;
+  QLabel* saving_label_ = nullptr;  // "saving..." while the saver works
+  QLabel* lag_label_ = nullptr;     // "physics behind real time" while it is
   MetricsPanel* metrics_panel_ = nullptr;
   QTimer* timer_ = nullptr;
   LoopStats render_stats_;
   void SendManualPoses();          // keyboard/mouse poses and pedal -> the live input
   bool MouseEvent(QEvent* event);  // a drag or wheel that moves an instrument; true if used
 
-  std::vector<physics::InstrumentPose> poses_;
+  std::vector<physics::InstrumentPose> poses_, initial_poses_;
+  InputChoice input_choice_ = InputChoice::kKeyboard;
+  std::unique_ptr<SessionSaver> saver_;  // null when sessions are not stored
+  std::uint64_t save_ticket_ = 0;        // the saver's ticket of this window's latest session
+  std::string recording_note_;           // why the last session's input was not saved, if it was not
   int drag_instrument_ = -1;  // instrument a mouse button is dragging, -1: none
   int drag_x_ = 0, drag_y_ = 0;
   std::vector<double> max_insertion_m_;

@@ -6,8 +6,16 @@
 #include <QVTKOpenGLNativeWidget.h>
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sqlite3.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <QAction>
 #include <QApplication>
+#include <QStatusBar>
+#include <QTableWidget>
 #include <QLabel>
 #include <QMouseEvent>
 #include <QSurfaceFormat>
@@ -15,11 +23,19 @@
 #include <QWheelEvent>
 #include <filesystem>
 #include <fstream>
+#include <chrono>
+#include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
+#include "app/history/history_window.h"
+#include "app/history/learning_curve_plot.h"
 #include "app/history/metrics_panel.h"
+#include "app/records/pending_sessions.h"
 #include "app/records/session_store.h"
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario_loader.h"
@@ -74,6 +90,22 @@ class TrainerGuiTest : public ::testing::Test {
     std::ofstream(path) << toml;
     return path;
   }
+  // The first `frames` frames of the committed dissection (200 a second), written to the test folder.
+  std::filesystem::path WriteReplayHead(std::size_t frames) const {
+    device::InputRecording rec =
+        device::ReadInputRecording(std::filesystem::path(VESICA_SOURCE_DIR) / "data/recordings/dissection.csv");
+    rec.frames.resize(frames);
+    const auto path = dir_ / ("head-" + std::to_string(frames) + ".csv");
+    device::WriteInputRecording(path, rec);
+    return path;
+  }
+  // Moves the grasper with the keyboard, so that the session has something in it.
+  static void MoveGrasper(TrainerWindow& w) {
+    QWidget* gl = w.findChild<QVTKOpenGLNativeWidget*>();
+    QTest::qWait(200);
+    for (int i = 0; i < 5; ++i) QTest::keyClick(gl, Qt::Key_D);
+    QTest::qWait(300);
+  }
   static QString Label(TrainerWindow& w, const char* name) {
     auto* label = w.metrics_panel()->findChild<QLabel*>(name);
     return label ? label->text() : QString("<no label %1>").arg(name);
@@ -103,8 +135,9 @@ TEST_F(TrainerGuiTest, ReplayedSessionShowsItsMetricsAndIsStored) {
   options.real_time = false;
   auto w = MakeWindow(options);
   ASSERT_TRUE(QTest::qWaitFor([&] { return w->session_finished(); }, 120000)) << w->last_error();
+  // Stored off the GUI thread: a moment later.
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 60000)) << w->last_error();
   EXPECT_TRUE(w->last_error().empty()) << w->last_error();
-  ASSERT_TRUE(w->stored_session_id().has_value());
 
   // The panel shows the stored metrics.
   auto store = OpenSessionStore(options.records_location);
@@ -271,6 +304,295 @@ TEST_F(TrainerGuiTest, OpeningAnotherScenarioStoresTheRunningSessionAndRunsTheNe
   sessions = store->List("resident-10");
   ASSERT_EQ(sessions.size(), 2u);
   EXPECT_EQ(sessions[1].record.scenario, "Cholecystectomy, stiff ligaments");
+}
+
+// --- No finished session is ever lost -------------------------------------------------------
+
+TEST_F(TrainerGuiTest, SessionIsStoredWhenItsInputRecordingCannotBeWritten) {
+  std::ofstream(dir_ / "a-file") << "x";  // the recordings folder is a file: nothing can go there
+  TrainerOptions options;
+  options.trainee_id = "resident-20";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  options.recordings_dir = dir_ / "a-file" / "recordings";
+  options.replay_file = WriteReplayHead(100);
+  options.real_time = false;
+  auto w = MakeWindow(options);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 60000)) << w->last_error();
+  const auto sessions = OpenSessionStore(options.records_location)->List("resident-20");
+  ASSERT_EQ(sessions.size(), 1u);
+  EXPECT_EQ(sessions[0].record.input_recording_path, "");
+  EXPECT_NEAR(sessions[0].record.metrics.duration_s, 0.5, 0.01);
+  const QString status = w->statusBar()->currentMessage();
+  EXPECT_TRUE(status.contains("input recording was not saved")) << status.toStdString();
+}
+
+TEST_F(TrainerGuiTest, TraineeIdWithASlashGetsItsRecordingAndItsSession) {
+  TrainerOptions options;
+  options.trainee_id = "ward 3/ana";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  options.recordings_dir = dir_ / "recordings";
+  options.replay_file = WriteReplayHead(100);
+  options.real_time = false;
+  auto w = MakeWindow(options);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 60000)) << w->last_error();
+  const auto sessions = OpenSessionStore(options.records_location)->List("ward 3/ana");
+  ASSERT_EQ(sessions.size(), 1u);
+  const std::filesystem::path recording = sessions[0].record.input_recording_path;
+  EXPECT_EQ(recording.parent_path(), options.recordings_dir);
+  EXPECT_TRUE(recording.filename().string().starts_with("ward_3_ana-session-")) << recording;
+  EXPECT_GE(device::ReadInputRecording(recording).frames.size(), 99u);  // until the replay's last frame time
+}
+
+TEST_F(TrainerGuiTest, SessionsStartedInTheSameSecondKeepTheirOwnInput) {
+  TrainerOptions options;
+  options.trainee_id = "resident-21";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  options.recordings_dir = dir_ / "recordings";
+  auto w = MakeWindow(options);
+  QWidget* gl = w->findChild<QVTKOpenGLNativeWidget*>();
+  // Several short sessions, as fast as the keys go: some start in the same second.
+  std::vector<std::int64_t> ids;
+  for (int i = 0; i < 3; ++i) {
+    if (i > 0) QTest::keyClick(gl, Qt::Key_R);
+    QTest::qWait(100);
+    for (int k = 0; k <= i; ++k) QTest::keyClick(gl, Qt::Key_D);  // i + 1 yaw steps: each input differs
+    QTest::qWait(300);  // physics samples the keys' pose before the end
+    QTest::keyClick(gl, Qt::Key_Return);
+    ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 30000)) << w->last_error();
+    ids.push_back(*w->stored_session_id());
+  }
+  const auto sessions = OpenSessionStore(options.records_location)->List("resident-21");
+  ASSERT_EQ(sessions.size(), 3u);
+  const KeyboardStep step;
+  const double start_yaw = LaparoscopeView(*scenario_, *meshes_).poses()[0].yaw_rad;
+  for (int i = 0; i < 3; ++i) {
+    const auto& r = sessions[static_cast<size_t>(i)].record;
+    for (int j = 0; j < i; ++j) EXPECT_NE(r.input_recording_path, sessions[static_cast<size_t>(j)].record.input_recording_path);
+    const device::InputRecording rec = device::ReadInputRecording(r.input_recording_path);
+    ASSERT_FALSE(rec.frames.empty());
+    // R put the grasper back, then D turned it by -angle_rad i + 1 times.
+    EXPECT_NEAR(rec.frames.back().instruments[0].pose.yaw_rad, start_yaw - (i + 1) * step.angle_rad, 1e-12)
+        << "session " << i << " replays another session's input";
+  }
+}
+
+TEST_F(TrainerGuiTest, SessionThatCannotBeStoredIsKeptAndStoredAtTheNextStart) {
+  TrainerOptions options;
+  options.trainee_id = "resident-22";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  options.saver.attempts = 2;
+  options.saver.retry_wait = std::chrono::milliseconds(50);
+  std::filesystem::create_directories(options.records_location);  // a folder where the file should be
+  {
+    auto w = MakeWindow(options);
+    MoveGrasper(*w);
+    QTest::keyClick(w->findChild<QVTKOpenGLNativeWidget*>(), Qt::Key_Return);
+    ASSERT_TRUE(QTest::qWaitFor([&] { return !w->last_error().empty(); }, 30000));
+    EXPECT_NE(w->last_error().find("kept in " + PendingSessionsPath(options.records_location).string()),
+              std::string::npos)
+        << w->last_error();
+    EXPECT_FALSE(w->stored_session_id().has_value());
+  }
+  ASSERT_EQ(ReadPendingSessions(PendingSessionsPath(options.records_location)).size(), 1u);
+
+  // The next start, with the location repaired: the kept session is stored, and the window says so.
+  std::filesystem::remove(options.records_location);
+  TrainerApp app(options, QSize(800, 450));
+  ASSERT_TRUE(app.Open(DefaultScenarioPath())) << app.last_error();
+  const QString status = app.window()->statusBar()->currentMessage();
+  EXPECT_TRUE(status.contains("Stored 1 session(s) kept from an earlier run")) << status.toStdString();
+  const auto sessions = OpenSessionStore(options.records_location)->List("resident-22");
+  ASSERT_EQ(sessions.size(), 1u);
+  EXPECT_GT(sessions[0].record.metrics.path_length_left_m, 0.0);
+  EXPECT_FALSE(std::filesystem::exists(PendingSessionsPath(options.records_location)));
+}
+
+TEST_F(TrainerGuiTest, LockedDatabaseIsSavedOffTheGuiThreadOnceItIsFree) {
+  TrainerOptions options;
+  options.trainee_id = "resident-23";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  options.saver.attempts = 20;
+  options.saver.retry_wait = std::chrono::milliseconds(100);
+  OpenSessionStore(options.records_location);  // the file exists, as on a station in use
+  // Another program holds the write lock (a second trainer, a long export).
+  sqlite3* other = nullptr;
+  ASSERT_EQ(sqlite3_open(options.records_location.c_str(), &other), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(other, "BEGIN EXCLUSIVE", nullptr, nullptr, nullptr), SQLITE_OK);
+
+  auto w = MakeWindow(options);
+  MoveGrasper(*w);
+  QTest::keyClick(w->findChild<QVTKOpenGLNativeWidget*>(), Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->session_finished(); }, 30000));
+  // The window goes on (its timer renders) and says it is saving.
+  EXPECT_TRUE(w->saving());
+  QTest::qWait(500);
+  EXPECT_TRUE(w->saving());
+  EXPECT_TRUE(w->findChild<QLabel*>("saving")->isVisible());
+  EXPECT_FALSE(w->stored_session_id().has_value());
+
+  sqlite3_exec(other, "COMMIT", nullptr, nullptr, nullptr);
+  sqlite3_close(other);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 60000)) << w->last_error();
+  QTest::qWait(50);
+  EXPECT_FALSE(w->findChild<QLabel*>("saving")->isVisible());
+  EXPECT_EQ(OpenSessionStore(options.records_location)->List("resident-23").size(), 1u);
+}
+
+TEST_F(TrainerGuiTest, QuitStoresTheRunningSessionAsUnfinished) {
+  TrainerOptions options;
+  options.trainee_id = "resident-24";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  auto w = MakeWindow(options);
+  auto* quit = w->findChild<QAction*>("quit");
+  ASSERT_NE(quit, nullptr);
+  EXPECT_EQ(quit->shortcut(), QKeySequence(QKeySequence::Quit));
+  EXPECT_EQ(quit->shortcut().toString(), "Ctrl+Q");
+  MoveGrasper(*w);
+  quit->trigger();
+  EXPECT_FALSE(w->isVisible());
+  const auto sessions = OpenSessionStore(options.records_location)->List("resident-24");
+  ASSERT_EQ(sessions.size(), 1u);
+  EXPECT_TRUE(sessions[0].record.unfinished);
+  EXPECT_FALSE(sessions[0].record.replay);
+  EXPECT_GT(sessions[0].record.metrics.path_length_left_m, 0.0);
+}
+
+// --- Honest records ------------------------------------------------------------------------------
+
+TEST_F(TrainerGuiTest, ReplayIsStoredAsAReplayAndStaysOffTheLearningCurve) {
+  TrainerOptions options;
+  options.trainee_id = "resident-25";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  options.replay_file = WriteReplayHead(100);
+  options.real_time = false;
+  {
+    auto w = MakeWindow(options);  // a replay: the recording drives, not the trainee
+    ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 60000)) << w->last_error();
+  }
+  options.replay_file.clear();
+  {
+    auto w = MakeWindow(options);  // the trainee's own session
+    MoveGrasper(*w);
+    QTest::keyClick(w->findChild<QVTKOpenGLNativeWidget*>(), Qt::Key_Return);
+    ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 30000)) << w->last_error();
+  }
+  auto store = OpenSessionStore(options.records_location);
+  const auto sessions = store->List("resident-25");
+  ASSERT_EQ(sessions.size(), 2u);
+  EXPECT_TRUE(sessions[0].record.replay);
+  EXPECT_FALSE(sessions[1].record.replay);
+  HistoryWindow history(*store);
+  ASSERT_TRUE(history.SelectTrainee("resident-25"));
+  EXPECT_EQ(history.Table()->rowCount(), 2);
+  EXPECT_EQ(history.Table()->item(0, 4)->text(), "replay");
+  EXPECT_EQ(history.Plot()->Points().size(), 1u);  // only the trainee's own session
+  EXPECT_TRUE(history.StatusText().contains("1 replay(s) listed, not plotted")) << history.StatusText().toStdString();
+}
+
+TEST_F(TrainerGuiTest, ResetPutsTheInstrumentsBackWithTheTissue) {
+  TrainerOptions options;
+  options.trainee_id = "resident-26";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  options.recordings_dir = dir_ / "recordings";
+  auto w = MakeWindow(options);
+  QWidget* gl = w->findChild<QVTKOpenGLNativeWidget*>();
+  MoveGrasper(*w);
+  QTest::keyClick(gl, Qt::Key_M);  // pedal down
+  QTest::keyClick(gl, Qt::Key_R);
+  QTest::qWait(300);
+  QTest::keyClick(gl, Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 30000)) << w->last_error();
+  const auto sessions = OpenSessionStore(options.records_location)->List("resident-26");
+  ASSERT_EQ(sessions.size(), 1u);  // the session before R was not ended: only the new one
+  const device::InputRecording rec = device::ReadInputRecording(sessions[0].record.input_recording_path);
+  ASSERT_FALSE(rec.frames.empty());
+  const auto start = LaparoscopeView(*scenario_, *meshes_).poses();  // where the scenario puts them
+  for (const auto& frame : {rec.frames.front(), rec.frames.back()}) {
+    EXPECT_EQ(frame.instruments[0].pose.yaw_rad, start[0].yaw_rad);
+    EXPECT_EQ(frame.instruments[0].pose.insertion_m, start[0].insertion_m);
+    EXPECT_FALSE(frame.instruments[1].pedal);
+  }
+  EXPECT_EQ(sessions[0].record.metrics.path_length_left_m, 0.0);
+}
+
+// --- The real trainer, as a process -----------------------------------------------------------------
+
+// Starts vesica-trainer with `args` and `env` changes (nullopt: unset); stdout and stderr go to
+// `log`. Returns the child's pid.
+pid_t StartTrainer(const std::vector<std::string>& args, const std::map<std::string, std::optional<std::string>>& env,
+                   const std::filesystem::path& log) {
+  std::vector<std::string> argv{VESICA_TRAINER_EXE};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const pid_t pid = fork();
+  if (pid == 0) {
+    for (const auto& [name, value] : env) value ? setenv(name.c_str(), value->c_str(), 1) : unsetenv(name.c_str());
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, STDOUT_FILENO);
+    dup2(fd, STDERR_FILENO);
+    std::vector<char*> pointers;
+    for (auto& a : argv) pointers.push_back(a.data());
+    pointers.push_back(nullptr);
+    execv(pointers[0], pointers.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// Waits for the child; its exit code, -1 when a signal ended it, -2 when it ran past `timeout_s`
+// (then it is killed).
+int WaitTrainer(pid_t pid, int timeout_s) {
+  for (int i = 0; i < timeout_s * 100; ++i) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  return -2;
+}
+
+std::string ReadText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST_F(TrainerGuiTest, XdgDataHomeThatIsAFileIsAnErrorAtStart) {
+  const auto xdg = dir_ / "xdg-is-a-file";
+  std::ofstream(xdg) << "x";
+  const auto log = dir_ / "trainer.log";
+  const pid_t pid = StartTrainer({"--quit-after-ms", "3000", "--trainee", "resident-27"},
+                                 {{"XDG_DATA_HOME", xdg.string()}, {"VESICA_RECORDS_DB", std::nullopt}}, log);
+  EXPECT_EQ(WaitTrainer(pid, 120), 2);
+  const std::string text = ReadText(log);
+  EXPECT_NE(text.find("the records database cannot be used"), std::string::npos) << text;
+  EXPECT_NE(text.find("XDG_DATA_HOME=" + xdg.string() + ", which must be a folder"), std::string::npos) << text;
+  EXPECT_NE(text.find("Not a directory"), std::string::npos) << text;
+}
+
+TEST_F(TrainerGuiTest, SigtermMidSessionStoresTheSessionAsUnfinished) {
+  const auto db = dir_ / "sessions.sqlite";
+  const auto log = dir_ / "trainer.log";
+  // A replay in real time: the session is still running when the signal comes.
+  const pid_t pid = StartTrainer({"--replay", WriteReplayHead(2000).string(), "--records", db.string(),
+                                  "--recordings-dir", "none", "--trainee", "resident-28"},
+                                 {}, log);
+  // Wait until the session runs (the window is up), then a little more so that the tools moved.
+  bool running = false;
+  for (int i = 0; i < 12000 && !running; ++i) {
+    running = ReadText(log).find("connective-tissue springs") != std::string::npos;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(running) << ReadText(log);
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  EXPECT_EQ(WaitTrainer(pid, 60), 0) << ReadText(log);
+  const auto sessions = OpenSessionStore(db.string())->List("resident-28");
+  ASSERT_EQ(sessions.size(), 1u) << ReadText(log);
+  EXPECT_TRUE(sessions[0].record.unfinished);
+  EXPECT_TRUE(sessions[0].record.replay);
+  EXPECT_GT(sessions[0].record.metrics.duration_s, 0.0);
 }
 
 }  // namespace
