@@ -47,6 +47,11 @@ TEST(CanArmSocketCanTest, BridgeAndEmulatorOverVcan) {
   emu::ArmEmulator::Config ec;
   ec.board.park_position = {0.1f, 0.05f, 0.12f};
   ec.tick_period = 1ms;
+  // The sockets' send deadlines are wall clock: user-mode Linux on a loaded 2-core host keeps
+  // vcan0's queue full for milliseconds at a time, and with the default 0.5 ms (host) and 1 ms
+  // (arm) over a hundred commands in a row were dropped (node watchdog fault, 5 of 6 runs at load
+  // 6-7 with other builds running). The emulated clock does not move while a send waits.
+  ec.send_deadline = 50ms;
   emu::ArmEmulator emulator(*arm_bus, emu::ArmPlantParameters::Nominal(), q0, ec);
   const fp::Nanoseconds t0 = arm_bus->now();
   emu::HandTarget hold;
@@ -58,6 +63,7 @@ TEST(CanArmSocketCanTest, BridgeAndEmulatorOverVcan) {
   // A frame dropped by the guest's vcan queue must not end the session: the watchdog's own timing
   // is tested on the virtual bus; here it gets the protocol's maximum, 100 ms of emulated time.
   config.node_watchdog_timeout = 100ms;
+  config.send_deadline = 50ms;
   CanArm arm(*host, config);
   arm.Open();
 
