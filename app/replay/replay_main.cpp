@@ -15,7 +15,6 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -116,14 +115,11 @@ int main(int argc, char** argv) {
   bool any_scenario = false;
   cli.add_flag("--any-scenario", any_scenario,
                "replay even when the recording's '# scenario:' line names another scenario than the one given");
-  ProgressStyle progress_style = ProgressStyle::kAuto;
-  cli.add_option("--progress", progress_style,
+  std::string progress = "auto";
+  cli.add_option("--progress", progress,
                  "progress on stderr: auto (redrawn on a terminal; otherwise a line each tenth of a replay longer "
                  "than 10 s), lines (a line each tenth), none")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, ProgressStyle>{
-              {"auto", ProgressStyle::kAuto}, {"lines", ProgressStyle::kLines}, {"none", ProgressStyle::kNone}},
-          CLI::ignore_case))
+      ->check(CLI::IsMember({"auto", "lines", "none"}))
       ->capture_default_str();
   CLI11_PARSE(cli, argc, argv);
 
@@ -169,12 +165,15 @@ int main(int argc, char** argv) {
     int png_index = 0;
     double next_png_s = 0;
     const auto paced_from = std::chrono::steady_clock::now();
-    ReplayProgress progress(progress_style, total_steps,
-                            static_cast<double>(total_steps) * model->settings.time_step_s);
+    const ProgressStyle progress_style = progress == "lines"  ? ProgressStyle::kLines
+                                         : progress == "none" ? ProgressStyle::kNone
+                                                              : ProgressStyle::kAuto;
+    ReplayProgress progress_report(progress_style, total_steps,
+                                   static_cast<double>(total_steps) * model->settings.time_step_s);
     long steps_done = 0;
     const vesica::app::ReplayOutcome outcome =
         vesica::app::RunReplay(session, input, [&](const vesica::app::DissectionSession& s, const auto& r) {
-          progress.Update(++steps_done, s.time_s());
+          progress_report.Update(++steps_done, s.time_s());
           if (real_time)
             std::this_thread::sleep_until(paced_from + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                            std::chrono::duration<double>(s.time_s())));
@@ -195,7 +194,7 @@ int main(int argc, char** argv) {
           next_png_s += png_every_s;
         });
 
-    progress.Finish();
+    progress_report.Finish();
     const vesica::app::SessionMetrics m = session.metrics();
     std::printf("session time          %.3f s (%ld steps)\n", m.duration_s, outcome.steps);
     std::printf("gallbladder free      %s", m.gallbladder_free ? "yes" : "no");
