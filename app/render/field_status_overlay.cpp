@@ -4,11 +4,16 @@
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 
+#include <cmath>
+
 #include "app/render/render_colours.h"
 
 namespace vesica::app {
 
 namespace {
+
+// Below this the gap is the surface's own discretisation, not the hand pushing past it.
+constexpr double kPastContactShown_m = 1e-3;
 
 vtkSmartPointer<vtkTextActor> Label(vtkRenderer* renderer, int justification, double x, double y) {
   auto label = vtkSmartPointer<vtkTextActor>::New();
@@ -57,10 +62,15 @@ void FieldStatusOverlay::Update(const RenderFrame& frame) {
     Show(grasp_, "", kStatusIdleRgb);
   }
   if (const InstrumentFrame* h = instrument(hook_)) {
+    // The hand past where the tool is drawn (it stops at the tissue): say by how much.
+    const std::string past = h->past_contact_m >= kPastContactShown_m
+                                 ? "   " + std::to_string(static_cast<int>(std::lround(1e3 * h->past_contact_m))) +
+                                       " mm past contact"
+                                 : "";
     if (h->pedal_down)
-      Show(pedal_, h->cautery_active ? "CUT  (burning)" : "CUT  pedal down", kCauteryGlowRgb);
+      Show(pedal_, (h->cautery_active ? "CUT  (burning)" : "CUT  pedal down") + past, kCauteryGlowRgb);
     else
-      Show(pedal_, "hook: pedal up", kStatusIdleRgb);
+      Show(pedal_, "hook: pedal up" + past, past.empty() ? kStatusIdleRgb : kSlipRgb);
   } else {
     Show(pedal_, "", kStatusIdleRgb);
   }

@@ -87,7 +87,7 @@ void InstrumentActors::Update(const InstrumentFrame& frame) {
   const Eigen::Vector3d d = physics::ShaftDirection(reference_direction_, pose);
   // The physics tip is the working point: the closed jaws' ends, the hook's bend (where it burns).
   // The drawn shaft stops short of it by the jaw or hook stem length.
-  const Eigen::Vector3d tip = remote_centre_ + pose.insertion_m * d;
+  const Eigen::Vector3d tip = remote_centre_ + (pose.insertion_m - std::max(frame.past_contact_m, 0.0)) * d;
   const double head_m = config_.kind == InstrumentKind::kGrasper ? kJawLength_m : kHookStem_m;
   const Eigen::Vector3d hinge = tip - head_m * d;
   const Eigen::Vector3d outside = remote_centre_ - (config_.shaft_length_m - pose.insertion_m) * d;

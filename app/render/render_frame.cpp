@@ -1,5 +1,6 @@
 #include "app/render/render_frame.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -63,6 +64,10 @@ void ValidateRenderFrame(const RenderFrame& frame, const RenderFrameSizes& sizes
     const auto& p = frame.instruments[i].pose;
     for (double v : {p.yaw_rad, p.pitch_rad, p.roll_rad, p.insertion_m, p.jaw_angle_rad})
       if (!std::isfinite(v)) Fail("instruments[" + std::to_string(i) + "].pose is not finite");
+    const double past = frame.instruments[i].past_contact_m;
+    if (!std::isfinite(past) || past < 0 || past > std::max(p.insertion_m, 0.0))
+      Fail("instruments[" + std::to_string(i) + "].past_contact_m: " + std::to_string(past) +
+           " is not in [0, insertion_m]");
   }
 }
 

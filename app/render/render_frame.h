@@ -26,6 +26,9 @@ struct InstrumentFrame {
   bool slipping = false;          ///< a grasp slipped recently: the jaws are highlighted
   bool cautery_active = false;    ///< hook pedal down and touching: the hook tip glows
   bool pedal_down = false;        ///< the instrument's pedal is pressed (shown in the field, touching or not)
+  /// How far the commanded tip lies beyond the first surface its shaft meets (>= 0): the tool is
+  /// drawn that much short of pose.insertion_m, never through tissue, and the field says so.
+  double past_contact_m = 0;
 };
 
 /// Sizes below are checked by ValidateRenderFrame; "empty" entries mean "as at rest / untouched".

@@ -78,6 +78,11 @@ SessionStepReport DissectionSession::Step(const device::InputFrame& input) {
     ++report.springs_cut;
   }
 
+  // Where the tools are drawn: stopped at the first surface their shafts meet.
+  const std::array<double, 2> drawn = drawn_tool_limit_.Update(poses, scene_.liver_positions(),
+                                                               scene_.gallbladder_surface_positions());
+  for (size_t i = 0; i < 2; ++i) past_contact_m_[i] = poses[i].insertion_m - drawn[i];
+
   // Metrics.
   for (size_t i = 0; i < 2; ++i) {
     const Eigen::Vector3d tip = scene_.tool_tip(static_cast<int>(i));
@@ -131,6 +136,7 @@ RenderFrame DissectionSession::MakeRenderFrame() const {
     InstrumentFrame inst;
     inst.pose = last_input_[i].pose;
     inst.pedal_down = last_input_[i].pedal;
+    inst.past_contact_m = past_contact_m_[i];
     if (i == 0) {
       inst.grasping = scene_.grasp().state() == physics::GraspStateMachine::State::kHolding;
       inst.slipping = scene_.time_s() - last_slip_s_[0] < 0.5;

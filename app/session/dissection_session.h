@@ -10,6 +10,7 @@
 
 #include "app/records/session_metrics.h"
 #include "app/render/render_frame.h"
+#include "app/session/drawn_tool_limit.h"
 #include "device/input/input_frame.h"
 #include "fx/cautery_effects.h"
 #include "physics/bem/dense_lu_solve.h"
@@ -62,6 +63,8 @@ class DissectionSession {
   std::shared_ptr<const physics::DissectionModel> model_;
   physics::DissectionScene scene_;
   fx::CauteryEffects cautery_;
+  DrawnToolLimit drawn_tool_limit_{*model_};
+  std::array<double, 2> past_contact_m_{0, 0};  ///< commanded tip beyond where the tool is drawn
   std::size_t spring_cuts_applied_ = 0;
   std::array<device::InstrumentInput, 2> last_input_{};
   std::array<Eigen::Vector3d, 2> last_tip_{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
