@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <fstream>
 #include <stdexcept>
 #include <thread>
 
@@ -82,6 +83,30 @@ TEST(ArmBridgeTest, ShippedArmsScenarioNamesBothArms) {
   }
   // The same task as the default scenario: recordings replay in both, sessions share a curve.
   EXPECT_EQ(s.name, Load("cholecystectomy.toml").name);
+}
+
+/// The file from its [scenario] table on, without the lines the arms scenario changes.
+std::string WithoutInputs(const char* name) {
+  std::ifstream in(std::string(VESICA_SOURCE_DIR "/data/scenarios/") + name);
+  std::string line, out;
+  bool started = false;
+  while (std::getline(in, line)) {
+    started = started || line == "[scenario]";
+    const bool changed = line.starts_with("input =") || line.starts_with("can_node_id =") ||
+                         line.starts_with("description =");
+    if (started && !changed) out += line + "\n";
+  }
+  return out;
+}
+
+// The arms scenario is the default one with arms: the same organs, ports, camera and settings
+// (the format has no way to include one scenario in another, so a change to the default must be
+// made here too; this test says when it was not).
+TEST(ArmBridgeTest, ShippedArmsScenarioIsTheDefaultOneWithArms) {
+  const std::string arms = WithoutInputs("cholecystectomy-arms.toml");
+  ASSERT_FALSE(arms.empty());
+  EXPECT_EQ(arms, WithoutInputs("cholecystectomy.toml"))
+      << "data/scenarios/cholecystectomy-arms.toml differs from cholecystectomy.toml beyond its instruments' input";
 }
 
 // Session > Input > Haptic arms on the default scenario (keyboard instruments): the bridge drives
