@@ -18,8 +18,10 @@ namespace vesica::app {
 
 namespace {
 
-constexpr double kSteelGrey = 0.55;
-constexpr double kJawGrey = 0.35;
+// Laparoscopic instruments: a black insulated shaft (the electrode's insulation, the grasper's
+// too), bare steel only at the working end.
+constexpr double kInsulationGrey = 0.06;
+constexpr double kJawGrey = 0.45;
 constexpr double kJawLength_m = 0.018;
 constexpr double kHookStem_m = 0.012;
 constexpr double kHookFoot_m = 0.006;
@@ -68,7 +70,9 @@ InstrumentActors::InstrumentActors(const InstrumentConfig& config, const Eigen::
   shaft_ = Tube(shaft_line_, r);
   jaw_a_ = Tube(tip_a_, 0.45 * r);
   jaw_b_ = Tube(tip_b_, 0.45 * r);
-  Steel(shaft_, kSteelGrey);
+  Steel(shaft_, kInsulationGrey);
+  shaft_->GetProperty()->SetSpecular(0.5);  // a glossy plastic sleeve: highlights, no metal tint
+  shaft_->GetProperty()->SetSpecularPower(30);
   glow_ = vtkSmartPointer<vtkSphereSource>::New();
   glow_->SetRadius(0.7 * r);
   glow_->SetThetaResolution(16);

@@ -13,6 +13,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "app/render/context_organs.h"
 #include "app/render/display_frame.h"
 #include "app/render/field_status_overlay.h"
 #include "app/render/instrument_actors.h"
@@ -63,6 +64,7 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
     impl_->wall.emplace(meshes.abdominal_wall, kWallRgb, 0.12, scenario.abdominal_wall.opacity);
     r.AddActor(impl_->wall->actor());
   }
+  for (const auto& organ : MakeContextOrganActors(scenario.context_organs)) r.AddActor(organ);
   r.AddActor(impl_->membrane.actor());
   r.AddActor(impl_->smoke.actor());
   // Exact translucency (membrane over organs, overlapping smoke puffs); needs multisampling off

@@ -4,8 +4,9 @@
 
 namespace vesica::app {
 
-inline constexpr double kLiverRgb[3] = {0.55, 0.17, 0.13};
-inline constexpr double kGallbladderRgb[3] = {0.30, 0.50, 0.22};
+/// Liver: dark red-brown capsule. Gallbladder: grey-green with a blue cast (bile through a thin wall).
+inline constexpr double kLiverRgb[3] = {0.48, 0.14, 0.10};
+inline constexpr double kGallbladderRgb[3] = {0.33, 0.48, 0.35};
 /// Cautery's colour ramp (BurnedColour): a fresh burn coagulates to a pale tan-white first, then
 /// browns (desiccation) and chars to near-black with dose, as electrosurgery does to tissue.
 inline constexpr double kCoagulatedRgb[3] = {0.86, 0.78, 0.68};

@@ -82,6 +82,19 @@ struct InstrumentConfig {
   double initial_insertion_m = 0.10;  ///< tip depth below the remote centre at start
 };
 
+/// A static organ drawn for context, not simulated (the duodenum, the colon, the omentum, the
+/// bile ducts and the cystic artery, fat): a tube along its points, or an ellipsoid.
+struct ContextOrgan {
+  enum class Shape { kTube, kEllipsoid };
+  std::string name;
+  Shape shape = Shape::kTube;
+  std::vector<Eigen::Vector3d> points_m;  ///< tube centreline, >= 2 points
+  double radius_m = 0;                    ///< tube radius
+  Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();     ///< ellipsoid
+  Eigen::Vector3d semi_axes_m = Eigen::Vector3d::Zero();  ///< ellipsoid, along x, y, z
+  Eigen::Vector3d rgb = Eigen::Vector3d::Constant(0.8);   ///< colour 0..1
+};
+
 struct Scenario {
   std::filesystem::path source;  ///< the file it was loaded from
   std::string name;
@@ -93,6 +106,7 @@ struct Scenario {
   std::vector<Trocar> trocars;
   LaparoscopeConfig laparoscope;
   std::vector<InstrumentConfig> instruments;
+  std::vector<ContextOrgan> context_organs;  ///< optional [[context_organs]]
 
   const Trocar& trocar(const std::string& name) const;
 };

@@ -127,6 +127,29 @@ class TableReader {
     return v;
   }
 
+  /// An array of [x, y, z] points, at least `min_points`.
+  std::vector<Eigen::Vector3d> Vector3List(std::string_view key, std::size_t min_points) {
+    const toml::node* n = Node(key);
+    if (!n) Fail(nullptr, key, "missing (an array of [x, y, z] points is required)");
+    const toml::array* a = n->as_array();
+    if (!a || a->size() < min_points)
+      Fail(n, key, "must be an array of at least " + std::to_string(min_points) + " [x, y, z] points");
+    std::vector<Eigen::Vector3d> points;
+    for (std::size_t k = 0; k < a->size(); ++k) {
+      const toml::array* p = (*a)[k].as_array();
+      if (!p || p->size() != 3) Fail(n, key, "point " + std::to_string(k) + " must be [x, y, z]");
+      Eigen::Vector3d v;
+      for (int i = 0; i < 3; ++i) {
+        const toml::node& e = (*p)[static_cast<std::size_t>(i)];
+        if (!e.is_number() || !std::isfinite(*e.value<double>()))
+          Fail(n, key, "point " + std::to_string(k) + " element " + std::to_string(i) + " must be a finite number");
+        v[i] = *e.value<double>();
+      }
+      points.push_back(v);
+    }
+    return points;
+  }
+
   /// One of the named choices; the message lists them.
   template <typename Enum>
   Enum Choice(std::string_view key, const std::vector<std::pair<std::string, Enum>>& choices,
@@ -312,6 +335,27 @@ Scenario ParseScenario(std::string_view text, const fs::path& source_name, const
     s.laparoscope.scope_angle_deg = t.NumberIn("scope_angle_deg", -1.0, 90.0, 30.0);
     t.RejectUnknownKeys();
   }
+  if (top.Has("context_organs"))
+    for (auto& t : top.Tables("context_organs")) {
+      ContextOrgan organ;
+      organ.name = t.String("name");
+      organ.shape = t.Choice<ContextOrgan::Shape>(
+          "shape", {{"tube", ContextOrgan::Shape::kTube}, {"ellipsoid", ContextOrgan::Shape::kEllipsoid}});
+      if (organ.shape == ContextOrgan::Shape::kTube) {
+        organ.points_m = t.Vector3List("points_m", 2);
+        organ.radius_m = t.NumberIn("radius_m", 1e-4, 0.1);
+      } else {
+        organ.centre_m = t.Vector3("centre_m");
+        organ.semi_axes_m = t.Vector3("semi_axes_m");
+        if (!(organ.semi_axes_m.minCoeff() > 0 && organ.semi_axes_m.maxCoeff() < 0.3))
+          t.Fail(t.table().get("semi_axes_m"), "semi_axes_m", "each must be in (0, 0.3) m");
+      }
+      organ.rgb = t.Vector3("rgb");
+      if (!(organ.rgb.minCoeff() >= 0 && organ.rgb.maxCoeff() <= 1))
+        t.Fail(t.table().get("rgb"), "rgb", "each component must be in [0, 1]");
+      t.RejectUnknownKeys();
+      s.context_organs.push_back(std::move(organ));
+    }
   for (auto& t : top.Tables("instruments")) {
     InstrumentConfig in;
     in.name = t.String("name");

@@ -264,3 +264,74 @@ TEST_F(ScenarioLoaderTest, UnreadableFileIsNamed) {
 
 }  // namespace
 }  // namespace vesica::app
+
+namespace vesica::app {
+namespace {
+
+// The laparoscope's tip and the field's static context organs (issue 30).
+class ScenarioFieldTest : public ScenarioLoaderTest {};
+
+TEST_F(ScenarioFieldTest, ScopeInsertionAndContextOrgansAreRead) {
+  std::string text = kValid;
+  text += R"(
+[[context_organs]]
+name = "duodenum"
+shape = "tube"
+points_m = [[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.02, 0.01, 0.0]]
+radius_m = 0.014
+rgb = [0.8, 0.5, 0.4]
+
+[[context_organs]]
+name = "fat"
+shape = "ellipsoid"
+centre_m = [0.0, 0.01, 0.02]
+semi_axes_m = [0.01, 0.02, 0.03]
+rgb = [0.9, 0.7, 0.4]
+)";
+  const Scenario s = Parse(text);
+  EXPECT_DOUBLE_EQ(s.laparoscope.insertion_m, 0.07);  // the default
+  ASSERT_EQ(s.context_organs.size(), 2u);
+  EXPECT_EQ(s.context_organs[0].name, "duodenum");
+  EXPECT_EQ(s.context_organs[0].shape, ContextOrgan::Shape::kTube);
+  ASSERT_EQ(s.context_organs[0].points_m.size(), 3u);
+  EXPECT_TRUE(s.context_organs[0].points_m[2].isApprox(Eigen::Vector3d(0.02, 0.01, 0.0)));
+  EXPECT_DOUBLE_EQ(s.context_organs[0].radius_m, 0.014);
+  EXPECT_EQ(s.context_organs[1].shape, ContextOrgan::Shape::kEllipsoid);
+  EXPECT_TRUE(s.context_organs[1].semi_axes_m.isApprox(Eigen::Vector3d(0.01, 0.02, 0.03)));
+  EXPECT_TRUE(Parse(kValid).context_organs.empty());  // optional
+}
+
+TEST_F(ScenarioFieldTest, BadScopeInsertionAndContextOrgansAreNamed) {
+  // The scope's tip past what it looks at (the line is 18 cm long).
+  EXPECT_NE(ErrorAfter("look_at_m = [0.0, 0.0, 0.0]\n", "look_at_m = [0.0, 0.0, 0.0]\ninsertion_m = 0.2\n")
+                .find("laparoscope.insertion_m: puts the scope's tip within 1 cm of (or past) look_at_m"),
+            std::string::npos);
+  const auto error_of = [&](const std::string& organ) {
+    try {
+      Parse(std::string(kValid) + "\n[[context_organs]]\n" + organ);
+    } catch (const ScenarioError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of("name = \"d\"\nshape = \"tube\"\npoints_m = [[0.0, 0.0, 0.0]]\nradius_m = 0.01\nrgb = [1, 1, 1]\n")
+                .find("points_m: must be an array of at least 2 [x, y, z] points"),
+            std::string::npos);
+  EXPECT_NE(error_of("name = \"d\"\nshape = \"blob\"\nrgb = [1, 1, 1]\n").find("unknown value 'blob'"),
+            std::string::npos);
+  EXPECT_NE(error_of("name = \"f\"\nshape = \"ellipsoid\"\ncentre_m = [0, 0, 0]\nsemi_axes_m = [0.01, -0.02, 0.03]\n"
+                     "rgb = [1, 1, 1]\n")
+                .find("semi_axes_m: each must be in (0, 0.3) m"),
+            std::string::npos);
+  EXPECT_NE(error_of("name = \"d\"\nshape = \"tube\"\npoints_m = [[0.0, 0.0, 0.0], [0.0, 0.0, nan]]\nradius_m = 0.01\n"
+                     "rgb = [1, 1, 1]\n")
+                .find("point 1 element 2 must be a finite number"),
+            std::string::npos);
+  EXPECT_NE(error_of("name = \"d\"\nshape = \"tube\"\npoints_m = [[0.0, 0.0, 0.0], [0.01, 0.0, 0.0]]\nradius_m = 0.01\n"
+                     "rgb = [1, 2, 1]\n")
+                .find("rgb: each component must be in [0, 1]"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace vesica::app
