@@ -46,8 +46,9 @@ std::string ArmSupervisor::Describe(const ArmSupervisorConfig& config, DeviceSta
     case DeviceStatus::kOk:
       return head + "ok";
     case DeviceStatus::kNodeFault:
-      return head + "FAULT " + (fault == fp::FaultCode::None ? std::string("(reading the node's fault history)")
-                                                               : std::string(fp::to_string(fault)));
+      return head + "FAULT " +
+             (fault == fp::FaultCode::None ? std::string("(reading the node's fault history)")
+                                           : std::string(fp::to_string(fault)));
     case DeviceStatus::kLinkLost:
       return head + "link lost";
     case DeviceStatus::kConnecting:

@@ -15,8 +15,8 @@ struct ArmReport {
   DeviceStatus status = DeviceStatus::kNotOpen;
   fp::FaultCode fault = fp::FaultCode::None;  ///< the node's latched fault while status is kNodeFault
   std::uint32_t link_losses = 0;
-  std::uint32_t automatic_fault_resets = 0;   ///< faults cleared because their cause was gone
-  std::uint32_t requested_fault_resets = 0;   ///< faults cleared on the user's command
+  std::uint32_t automatic_fault_resets = 0;  ///< faults cleared because their cause was gone
+  std::uint32_t requested_fault_resets = 0;  ///< faults cleared on the user's command
   /// One line: "left arm: ok", "right arm: FAULT over_current", "right arm: link lost",
   /// "left arm: no answer from node 1 on UDP 127.0.0.1:20000".
   std::string text;
@@ -59,7 +59,7 @@ class ArmSupervisor {
   std::atomic<bool> reset_requested_{false};
   mutable std::mutex mu_;
   std::int64_t first_tick_ns_ = -1;
-  std::int64_t fault_seen_ns_ = -1;     ///< when the current watchdog fault was first seen with the link up
+  std::int64_t fault_seen_ns_ = -1;  ///< when the current watchdog fault was first seen with the link up
   std::int64_t last_reset_ns_ = -1;
   bool silent_too_long_ = false;
   std::uint32_t automatic_resets_ = 0;

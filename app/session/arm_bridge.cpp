@@ -20,10 +20,10 @@ std::uint16_t ArmsimPort(const ArmBridgeOptions& o, int node_id) {
 
 /// Where the arm's node is, in the words of the error and status messages.
 std::string LinkOf(const InstrumentConfig& c, const ArmBridgeOptions& o) {
-  if (c.input == InputKind::kCanArm) return "node " + std::to_string(c.can_node_id) + " on SocketCAN " + c.can_interface;
-  return "node " + std::to_string(c.can_node_id) + " on UDP 127.0.0.1:" +
-         std::to_string(ArmsimPort(o, c.can_node_id)) + " (vesica-armsim --node-id " + std::to_string(c.can_node_id) +
-         ")";
+  if (c.input == InputKind::kCanArm)
+    return "node " + std::to_string(c.can_node_id) + " on SocketCAN " + c.can_interface;
+  return "node " + std::to_string(c.can_node_id) + " on UDP 127.0.0.1:" + std::to_string(ArmsimPort(o, c.can_node_id)) +
+         " (vesica-armsim --node-id " + std::to_string(c.can_node_id) + ")";
 }
 
 std::unique_ptr<fp::Transport> OpenTransport(const InstrumentConfig& c, const ArmBridgeOptions& o) {
@@ -75,8 +75,7 @@ ArmBridge::ArmBridge(const Scenario& scenario, const ArmBridgeOptions& options) 
   if (options.udp_base_port < 1 || options.udp_base_port + 2 * 126 + 1 > 65535)
     throw std::invalid_argument("arm bridge: udp_base_port must leave room for nodes 1..127 below 65536, got " +
                                 std::to_string(options.udp_base_port));
-  if (options.loss_timeout.count() <= 0)
-    throw std::invalid_argument("arm bridge: loss_timeout must be > 0");
+  if (options.loss_timeout.count() <= 0) throw std::invalid_argument("arm bridge: loss_timeout must be > 0");
   if (options.node_watchdog.count() < 500 || options.node_watchdog.count() > 100000)
     throw std::invalid_argument("arm bridge: node_watchdog must be 500 .. 100000 us (the node's range), got " +
                                 std::to_string(options.node_watchdog.count()) + " us");
@@ -93,9 +92,8 @@ ArmBridge::ArmBridge(const Scenario& scenario, const ArmBridgeOptions& options) 
     config.node_watchdog_timeout = options.node_watchdog;
     arms_[slot] = std::make_unique<device::CanArm>(*transports_[slot], config);
     if (const device::DeviceStatus s = arms_[slot]->Open(); s != device::DeviceStatus::kConnecting)
-      throw std::runtime_error("instrument '" + c.name + "': its arm (" + LinkOf(c, options) +
-                               ") refused to open: " + std::string(device::ToString(s)) + ": " +
-                               arms_[slot]->last_error());
+      throw std::runtime_error("instrument '" + c.name + "': its arm (" + LinkOf(c, options) + ") refused to open: " +
+                               std::string(device::ToString(s)) + ": " + arms_[slot]->last_error());
     device::ArmSupervisorConfig sc;
     sc.name = SideOf(slot);
     sc.link = LinkOf(c, options);

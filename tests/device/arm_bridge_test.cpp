@@ -4,13 +4,13 @@
 // back as "ok" without reopening anything.
 #include "app/session/arm_bridge.h"
 
+#include <gtest/gtest.h>
+
 #include <atomic>
 #include <chrono>
 #include <fstream>
 #include <stdexcept>
 #include <thread>
-
-#include <gtest/gtest.h>
 
 #include "app/scenario/scenario_loader.h"
 #include "armsim_process.h"
@@ -69,8 +69,11 @@ std::string WaitForLine(const ArmBridge& bridge, std::size_t arm, const std::str
 
 std::vector<std::string> ArmsimArgs(int base, int node) {
   const int port = base + 2 * (node - 1);
-  return {"--node-id", std::to_string(node), "--local-port", std::to_string(port), "--remote-port",
-          std::to_string(port + 1), "--log-level", "warn", "--hand", "figure8"};
+  return {"--node-id",     std::to_string(node),
+          "--local-port",  std::to_string(port),
+          "--remote-port", std::to_string(port + 1),
+          "--log-level",   "warn",
+          "--hand",        "figure8"};
 }
 
 TEST(ArmBridgeTest, ShippedArmsScenarioNamesBothArms) {
@@ -92,8 +95,8 @@ std::string WithoutInputs(const char* name) {
   bool started = false;
   while (std::getline(in, line)) {
     started = started || line == "[scenario]";
-    const bool changed = line.starts_with("input =") || line.starts_with("can_node_id =") ||
-                         line.starts_with("description =");
+    const bool changed =
+        line.starts_with("input =") || line.starts_with("can_node_id =") || line.starts_with("description =");
     if (started && !changed) out += line + "\n";
   }
   return out;
@@ -124,8 +127,8 @@ TEST(ArmBridgeTest, DefaultScenarioGetsTheEmulatedArmsAndSaysWhereItWaits) {
   bridge.Tick();
   const auto reports = bridge.Reports();
   ASSERT_EQ(reports.size(), 2u);
-  EXPECT_EQ(reports[0].text, "left arm: waiting for node 1 on UDP 127.0.0.1:" + std::to_string(base) +
-                                 " (vesica-armsim --node-id 1)");
+  EXPECT_EQ(reports[0].text,
+            "left arm: waiting for node 1 on UDP 127.0.0.1:" + std::to_string(base) + " (vesica-armsim --node-id 1)");
   EXPECT_EQ(reports[1].text, "right arm: waiting for node 2 on UDP 127.0.0.1:" + std::to_string(base + 2) +
                                  " (vesica-armsim --node-id 2)");
   EXPECT_FALSE(bridge.AllOk());

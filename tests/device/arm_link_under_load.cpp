@@ -94,9 +94,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "cannot open the bridge's UDP port: %s\n", error.c_str());
       return 1;
     }
-    if (!a.process.Start(armsim, {"--node-id", std::to_string(i + 1), "--local-port", std::to_string(arm_port),
-                                  "--remote-port", std::to_string(a.host->local_port()), "--log-level", "warn",
-                                  "--hand", "figure8"})) {
+    if (!a.process.Start(armsim,
+                         {"--node-id", std::to_string(i + 1), "--local-port", std::to_string(arm_port), "--remote-port",
+                          std::to_string(a.host->local_port()), "--log-level", "warn", "--hand", "figure8"})) {
       std::fprintf(stderr, "cannot start %s\n", armsim.c_str());
       return 1;
     }
@@ -161,10 +161,11 @@ int main(int argc, char** argv) {
     const ArmUnderTest& a = arms[i];
     const vesica::device::ArmReport r = supervisors[i]->Report();
     std::printf("arm %zu state silences:%s\n", i + 1, a.state_silence.Text(minutes).c_str());
-    std::printf("arm %zu at loss timeout %d ms, watchdog %d ms: link losses %.1f/min, watchdog faults %.1f/min, "
-                "automatic resets %u, status now '%s'\n",
-                i + 1, loss_ms, watchdog_ms, a.arm->link_loss_count() / minutes, a.watchdog_faults / minutes,
-                r.automatic_fault_resets, r.text.c_str());
+    std::printf(
+        "arm %zu at loss timeout %d ms, watchdog %d ms: link losses %.1f/min, watchdog faults %.1f/min, "
+        "automatic resets %u, status now '%s'\n",
+        i + 1, loss_ms, watchdog_ms, a.arm->link_loss_count() / minutes, a.watchdog_faults / minutes,
+        r.automatic_fault_resets, r.text.c_str());
   }
   return 0;
 }

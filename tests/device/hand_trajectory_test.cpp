@@ -2,10 +2,10 @@
 // tip target the trainer measures back as the same pose), and an emulated arm following them.
 #include "app/armsim/hand_trajectory.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
-
-#include <gtest/gtest.h>
 
 #include "app/session/arm_input.h"
 #include "bridge_rig.h"
