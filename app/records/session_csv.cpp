@@ -5,6 +5,7 @@
 #include <variant>
 
 #include "app/records/metric_fields.h"
+#include "app/records/metric_units.h"
 
 namespace vesica::app {
 namespace {
@@ -26,12 +27,12 @@ std::string DoubleText(double value) {
   return std::string(text, result.ptr);
 }
 
-std::string MetricText(const SessionMetrics& metrics, const MetricField& field) {
+std::string MetricText(const SessionMetrics& metrics, const MetricField& field, double scale) {
   return std::visit(
       [&](auto member) -> std::string {
         const auto value = metrics.*member;
         if constexpr (std::is_same_v<decltype(value), const double>)
-          return DoubleText(value);
+          return DoubleText(value * scale);
         else if constexpr (std::is_same_v<decltype(value), const bool>)
           return value ? "1" : "0";
         else
@@ -43,9 +44,9 @@ std::string MetricText(const SessionMetrics& metrics, const MetricField& field) 
 }  // namespace
 
 std::vector<std::string> SessionCsvColumns() {
-  std::vector<std::string> columns{"id",        "trainee_id",          "scenario", "station", "started_utc",
-                                   "ended_utc", "input_recording_path"};
-  for (const auto& field : kMetricFields) columns.emplace_back(field.name);
+  std::vector<std::string> columns{"id",        "trainee_id",           "scenario", "station",    "started_utc",
+                                   "ended_utc", "input_recording_path", "replay",   "unfinished", "physics_lag_s"};
+  for (const auto& unit : kMetricDisplayUnits) columns.emplace_back(unit.csv_column);
   return columns;
 }
 
@@ -57,8 +58,10 @@ void WriteSessionsCsv(const std::vector<StoredSession>& sessions, std::ostream& 
     const auto& r = session.record;
     out << session.id << ',' << CsvField(r.trainee_id) << ',' << CsvField(r.scenario) << ',' << CsvField(r.station)
         << ',' << FormatUtcIso8601(r.started_unix_s) << ',' << FormatUtcIso8601(r.ended_unix_s) << ','
-        << CsvField(r.input_recording_path);
-    for (const auto& field : kMetricFields) out << ',' << MetricText(r.metrics, field);
+        << CsvField(r.input_recording_path) << ',' << (r.replay ? 1 : 0) << ',' << (r.unfinished ? 1 : 0) << ','
+        << DoubleText(r.physics_lag_s);
+    for (std::size_t i = 0; i < kMetricFields.size(); ++i)
+      out << ',' << MetricText(r.metrics, kMetricFields[i], kMetricDisplayUnits[i].scale);
     out << '\n';
   }
 }

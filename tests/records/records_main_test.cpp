@@ -61,13 +61,29 @@ TEST_F(RecordsToolTest, ListTraineePrintsSessionsOldestFirst) {
   std::vector<std::string> lines;
   for (std::string line; std::getline(out, line);) lines.push_back(line);
   ASSERT_EQ(lines.size(), 3u) << run.out;
-  EXPECT_THAT(lines[0], AllOf(StartsWith("id"), HasSubstr("started (UTC)"), HasSubstr("success")));
+  // The units of the trainer and the CSV export, named in the header: seconds, not minutes.
+  EXPECT_THAT(lines[0], AllOf(StartsWith("id"), HasSubstr("started (UTC)"), HasSubstr("duration (s)"),
+                              HasSubstr("success")));
   // SampleRecord(0): 2026-11-23T04:00:00Z, 300.08 s, free and no perforation.
   EXPECT_THAT(lines[1],
               AllOf(StartsWith(std::to_string(ids_[1]) + " "), HasSubstr("ana"), HasSubstr("2026-11-23T04:00:00Z"),
-                    HasSubstr("5.0"), HasSubstr("yes"), HasSubstr("cholecystectomy-0")));
+                    HasSubstr(" 300.1 "), HasSubstr("yes"), HasSubstr("cholecystectomy-0")));
   // SampleRecord(2), ten minutes later per index: free and no perforation too.
+  EXPECT_THAT(lines[2], HasSubstr(" yes "));
   EXPECT_THAT(lines[2], AllOf(StartsWith(std::to_string(ids_[0]) + " "), HasSubstr("2026-11-23T04:20:00Z")));
+}
+
+TEST_F(RecordsToolTest, ListNeverShowsAReplayOrAnUnfinishedSessionAsASuccess) {
+  SessionRecord replay = SampleRecord(0, "cy"), unfinished = SampleRecord(2, "cy");
+  ASSERT_TRUE(replay.metrics.success && unfinished.metrics.success);
+  replay.replay = true;
+  unfinished.unfinished = true;
+  const auto store = OpenSessionStore(db_);
+  store->Add(replay);
+  store->Add(unfinished);
+  const auto run = Records({"--db", db_, "list", "--trainee", "cy"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_THAT(run.out, AllOf(HasSubstr(" replay "), HasSubstr(" unfinished "), Not(HasSubstr(" yes "))));
 }
 
 TEST_F(RecordsToolTest, ExportCsvWritesTheSameAsTheLibrary) {

@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "app/records/metric_fields.h"
+#include "app/records/metric_units.h"
 #include "app/records/session_store.h"
 #include "tests/records/csv_reader.h"
 #include "tests/records/sample_records.h"
@@ -23,10 +24,11 @@ using testing::ReadCsv;
 using testing::SampleRecord;
 using testing::TempDir;
 
-// Checks one CSV row against the session it came from; doubles parse back bit for bit.
+// Checks one CSV row against the session it came from; doubles (in their display unit) parse
+// back bit for bit.
 void ExpectRowIs(const std::vector<std::string>& row, const StoredSession& session) {
   const auto& r = session.record;
-  ASSERT_EQ(row.size(), 7 + kMetricFields.size());
+  ASSERT_EQ(row.size(), 10 + kMetricFields.size());
   EXPECT_EQ(row[0], std::to_string(session.id));
   EXPECT_EQ(row[1], r.trainee_id);
   EXPECT_EQ(row[2], r.scenario);
@@ -34,15 +36,19 @@ void ExpectRowIs(const std::vector<std::string>& row, const StoredSession& sessi
   EXPECT_EQ(row[4], FormatUtcIso8601(r.started_unix_s));
   EXPECT_EQ(row[5], FormatUtcIso8601(r.ended_unix_s));
   EXPECT_EQ(row[6], r.input_recording_path);
-  std::size_t column = 7;
+  EXPECT_EQ(row[7], r.replay ? "1" : "0");
+  EXPECT_EQ(row[8], r.unfinished ? "1" : "0");
+  EXPECT_EQ(std::strtod(row[9].c_str(), nullptr), r.physics_lag_s);
+  std::size_t column = 10;
   for (const auto& field : kMetricFields) {
+    const double scale = FindMetricDisplayUnit(field.name)->scale;
     const std::string& text = row[column++];
     std::visit(
         [&](auto member) {
           using T = std::remove_cvref_t<decltype(r.metrics.*member)>;
           if constexpr (std::is_same_v<T, double>) {
             char* end = nullptr;
-            EXPECT_EQ(std::strtod(text.c_str(), &end), r.metrics.*member) << field.name << " = " << text;
+            EXPECT_EQ(std::strtod(text.c_str(), &end), r.metrics.*member * scale) << field.name << " = " << text;
             EXPECT_EQ(*end, '\0') << field.name;
           } else if constexpr (std::is_same_v<T, bool>) {
             EXPECT_EQ(text, r.metrics.*member ? "1" : "0") << field.name;
@@ -61,13 +67,14 @@ TEST(FormatUtcIso8601Test, KnownInstants) {
   EXPECT_EQ(FormatUtcIso8601(-1), "1969-12-31T23:59:59Z");
 }
 
-TEST(SessionCsvTest, HeaderIsFixedColumnsThenEveryMetric) {
-  EXPECT_THAT(
-      SessionCsvColumns(),
-      ElementsAre("id", "trainee_id", "scenario", "station", "started_utc", "ended_utc", "input_recording_path",
-                  "duration_s", "path_length_left_m", "path_length_right_m", "slips", "cautery_on_s", "liver_damage_m2",
-                  "gallbladder_damage_m2", "max_force_N", "mean_force_N", "tissue_removed_fraction", "springs_cut",
-                  "springs_total", "gallbladder_free", "perforation", "success"));
+TEST(SessionCsvTest, HeaderIsFixedColumnsThenEveryMetricNamedWithItsDisplayUnit) {
+  // The units of the trainer's panel and history (s, cm, mm², N, %), not the stored SI metres.
+  EXPECT_THAT(SessionCsvColumns(),
+              ElementsAre("id", "trainee_id", "scenario", "station", "started_utc", "ended_utc", "input_recording_path",
+                          "replay", "unfinished", "physics_lag_s", "duration_s", "path_length_left_cm",
+                          "path_length_right_cm", "slips", "cautery_on_s", "liver_damage_mm2", "gallbladder_damage_mm2",
+                          "max_force_N", "mean_force_N", "tissue_removed_percent", "springs_cut", "springs_total",
+                          "gallbladder_free", "perforation", "success"));
 }
 
 TEST(SessionCsvTest, EmptyListIsHeaderOnly) {
@@ -94,7 +101,10 @@ TEST(SessionCsvTest, RowsReadBackToTheSameValuesIncludingAwkwardText) {
   }
   // A literal check of one plain row, so the format cannot drift unnoticed.
   EXPECT_EQ(rows[1][4], "2026-11-23T04:00:00Z");
-  EXPECT_EQ(rows[1][7], "300.0833333333333");  // duration_s = 299.75 + 1/3
+  EXPECT_EQ(rows[1][10], "300.0833333333333");  // duration_s = 299.75 + 1/3
+  EXPECT_EQ(rows[1][11], "14.285714285714285");  // path_length_left_cm = 100 / 7
+  EXPECT_EQ(rows[1][15], "15");                  // liver_damage_mm2 = 1.5e-5 m² x 1e6
+  EXPECT_EQ(rows[1][19], "50");                  // tissue_removed_percent = 1/2 x 100
 }
 
 TEST(SessionCsvTest, StoreExportIsTheTraineesSessionsInListOrder) {

@@ -35,6 +35,8 @@
 #include "app/history/history_window.h"
 #include "app/history/learning_curve_plot.h"
 #include "app/history/metrics_panel.h"
+#include "app/history/plot_metrics.h"
+#include "app/records/metric_units.h"
 #include "app/records/pending_sessions.h"
 #include "app/records/session_store.h"
 #include "app/render/scene_meshes.h"
@@ -487,6 +489,15 @@ TEST_F(TrainerGuiTest, ReplayIsStoredAsAReplayAndStaysOffTheLearningCurve) {
   EXPECT_EQ(history.Table()->item(0, 4)->text(), "replay");
   EXPECT_EQ(history.Plot()->Points().size(), 1u);  // only the trainee's own session
   EXPECT_TRUE(history.StatusText().contains("1 replay(s) listed, not plotted")) << history.StatusText().toStdString();
+}
+
+TEST(TrainerUnitsTest, HistoryPlotsInTheUnitsOfTheCsvExportAndTheRecordsTool) {
+  for (const PlotMetric& plotted : kPlotMetrics) {
+    const MetricDisplayUnit* unit = FindMetricDisplayUnit(plotted.key);
+    ASSERT_NE(unit, nullptr) << plotted.key;
+    EXPECT_STREQ(plotted.unit, unit->unit) << plotted.key;
+    EXPECT_EQ(plotted.scale, unit->scale) << plotted.key;
+  }
 }
 
 TEST_F(TrainerGuiTest, ResetPutsTheInstrumentsBackWithTheTissue) {
