@@ -582,6 +582,30 @@ TEST_F(TrainerGuiTest, XdgDataHomeThatIsAFileIsAnErrorAtStart) {
   EXPECT_NE(text.find("Not a directory"), std::string::npos) << text;
 }
 
+TEST_F(TrainerGuiTest, BemCacheThatCannotBeWrittenRunsUncachedAndSaysSoOnce) {
+  // The liver's cache file is a directory (a leftover, a mistake): the trainer runs uncached,
+  // warns once, and the session is stored.
+  const auto cache_dir = dir_ / "cache";
+  std::filesystem::create_directories(cache_dir);
+  ::setenv("VESICA_CACHE_DIR", cache_dir.c_str(), 1);
+  const auto cache_file = BemCachePath(*scenario_);
+  ::unsetenv("VESICA_CACHE_DIR");
+  std::filesystem::create_directories(cache_file);
+  const auto db = dir_ / "sessions.sqlite";
+  const auto log = dir_ / "trainer.log";
+  const pid_t pid = StartTrainer({"--replay", WriteReplayHead(100).string(), "--fast", "--records", db.string(),
+                                  "--trainee", "resident-29", "--quit-after-ms", "15000"},
+                                 {{"VESICA_CACHE_DIR", cache_dir.string()}}, log);
+  EXPECT_EQ(WaitTrainer(pid, 120), 0) << ReadText(log);
+  const std::string text = ReadText(log);
+  const std::string warning = "running without the cache";
+  const auto first = text.find(warning);
+  ASSERT_NE(first, std::string::npos) << text;
+  EXPECT_EQ(text.find(warning, first + 1), std::string::npos) << "said more than once:\n" << text;
+  EXPECT_NE(text.find(cache_file.string()), std::string::npos) << text;
+  EXPECT_EQ(OpenSessionStore(db.string())->List("resident-29").size(), 1u) << text;
+}
+
 TEST_F(TrainerGuiTest, SigtermMidSessionStoresTheSessionAsUnfinished) {
   const auto db = dir_ / "sessions.sqlite";
   const auto log = dir_ / "trainer.log";
