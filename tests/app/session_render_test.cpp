@@ -46,6 +46,8 @@ using testing::Rgb;
 
 constexpr int kWidth = 1280;
 constexpr int kHeight = 720;
+// The rows above the field's status strip (its labels change with the pedal and the contact).
+constexpr int kFieldRows = kHeight - 40;
 
 // ---- pixel classes (from render_colours.h; lighting scales them) ----
 
@@ -140,6 +142,10 @@ class SessionRenderTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     scenario_ = new Scenario(LoadScenario(DefaultScenarioPath()));
+    // Only the simulated organs in view: the pixel classes below are theirs (the static context's
+    // fat is as bright a yellow as the hook's glow). tests/field checks the context.
+    scenario_->context_organs.clear();
+    scenario_->abdominal_wall.opacity = 0;
     meshes_ = new SceneMeshes(LoadSceneMeshes(*scenario_));
     model_ = BuildDissectionModelFor(*scenario_, *meshes_);
   }
@@ -284,7 +290,7 @@ TEST_F(SessionRenderTest, HookBurnsDarkenTheLiverAndSmokeRisesOnlyWhileThePedalI
   StepFor(session, 0.3, grasper, press, false);
   const Picture pressed_later = Render(session.MakeRenderFrame(), "2_pressed_pedal_up_later");
   int smoky_before = 0, changed_before = 0, glow_before = 0;
-  for (int row = 0; row < kHeight; ++row)
+  for (int row = 0; row < kFieldRows; ++row)
     for (int col = 0; col < kWidth; ++col) {
       smoky_before += TurnedSmoky(pressed.at(col, row), pressed_later.at(col, row));
       changed_before += std::abs(Luminance(pressed.at(col, row)) - Luminance(pressed_later.at(col, row))) > 8;
@@ -292,7 +298,8 @@ TEST_F(SessionRenderTest, HookBurnsDarkenTheLiverAndSmokeRisesOnlyWhileThePedalI
     }
   std::printf("pedal up, pressing: %d smoky, %d changed, %d glowing pixels\n", smoky_before, changed_before,
               glow_before);
-  EXPECT_EQ(smoky_before, 0);
+  // The hook is drawn where its shaft meets the settling tissue: its edge may move a pixel or two.
+  EXPECT_LE(smoky_before, 5);
   EXPECT_LT(changed_before, 50);
   EXPECT_EQ(glow_before, 0);
 
@@ -313,7 +320,7 @@ TEST_F(SessionRenderTest, HookBurnsDarkenTheLiverAndSmokeRisesOnlyWhileThePedalI
             [&](int col, int row) { puffs[static_cast<std::size_t>(row) * kWidth + col] = true; });
   }
   int smoky = 0, smoky_in_puffs = 0, glow = 0;
-  for (int row = 0; row < kHeight; ++row)
+  for (int row = 0; row < kFieldRows; ++row)
     for (int col = 0; col < kWidth; ++col) {
       if (TurnedSmoky(pressed_later.at(col, row), burning.at(col, row))) {
         ++smoky;
@@ -353,7 +360,7 @@ TEST_F(SessionRenderTest, HookBurnsDarkenTheLiverAndSmokeRisesOnlyWhileThePedalI
   };
   double drop_burned = 0;
   int burned_px = 0, far_changed = 0, far_px = 0, smoky_after = 0;
-  for (int row = 0; row < kHeight; ++row)
+  for (int row = 0; row < kFieldRows; ++row)
     for (int col = 0; col < kWidth; ++col) {
       const Rgb a = rest.at(col, row), b = after.at(col, row);
       if (inside(col, row) && IsLiver(a)) {
@@ -470,7 +477,8 @@ TEST_F(SessionRenderTest, ReplayedRecordingRendersJawsClosingAndTheGallbladderWh
   for (int row = 0; row < kHeight; ++row)
     for (int col = 0; col < kWidth; ++col) {
       amber_before += IsSlipAmber(open.at(col, row));
-      if (IsSlipAmber(slip.at(col, row))) {
+      // The field's status strip (the bottom 40 rows) says "GRASP SLIPPED" in the same amber.
+      if (IsSlipAmber(slip.at(col, row)) && row < kFieldRows) {
         ++amber;
         amber_near += Distance(tip_px, col, row) < 120;  // the 18 mm jaws span ~100 px from the scope's tip
       }

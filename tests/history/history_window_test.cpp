@@ -166,7 +166,7 @@ TEST_F(HistoryWindowTest, ExportCsvToWritesTheTraineesRows) {
   ASSERT_EQ(lines.size(), 4);
   EXPECT_TRUE(
       lines[0].startsWith("id,trainee_id,scenario,station,started_utc,ended_utc,input_recording_path,"
-                          "duration_s,"));
+                          "replay,unfinished,physics_lag_s,duration_s,"));
   // Rows in start order; ana's were stored as ids 4, 1, 3.
   EXPECT_TRUE(lines[1].startsWith("4,ana,cholecystectomy-default,station-1,2026-11-23T03:20:00Z,"))
       << lines[1].toStdString();
@@ -174,7 +174,7 @@ TEST_F(HistoryWindowTest, ExportCsvToWritesTheTraineesRows) {
       << lines[2].toStdString();
   EXPECT_TRUE(
       lines[3].startsWith("3,ana,cholecystectomy-default,station-1,2026-11-25T03:20:00Z,"
-                          "2026-11-25T03:28:30Z,\"/recordings/ana, third.vrec\",480.5,1.5,1.25,1,60,"))
+                          "2026-11-25T03:28:30Z,\"/recordings/ana, third.vrec\",0,0,0,480.5,150,125,1,60,"))
       << lines[3].toStdString();
   EXPECT_TRUE(lines[3].endsWith(",86,86,1,0,1"));
 
