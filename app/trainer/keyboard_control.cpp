@@ -31,12 +31,13 @@ bool ApplyInstrumentKey(char key, std::vector<physics::InstrumentPose>& poses,
     double physics::InstrumentPose::*field;
     double sign;
   };
+  // A/J move the tip to the picture's left, D/L to its right, W/I up, S/K down.
   static constexpr Binding kBindings[] = {
-      {'a', 0, &physics::InstrumentPose::yaw_rad, +1},     {'d', 0, &physics::InstrumentPose::yaw_rad, -1},
+      {'a', 0, &physics::InstrumentPose::yaw_rad, -1},     {'d', 0, &physics::InstrumentPose::yaw_rad, +1},
       {'w', 0, &physics::InstrumentPose::pitch_rad, +1},   {'s', 0, &physics::InstrumentPose::pitch_rad, -1},
       {'q', 0, &physics::InstrumentPose::insertion_m, +1}, {'e', 0, &physics::InstrumentPose::insertion_m, -1},
       {'z', 0, &physics::InstrumentPose::roll_rad, +1},    {'c', 0, &physics::InstrumentPose::roll_rad, -1},
-      {'j', 1, &physics::InstrumentPose::yaw_rad, +1},     {'l', 1, &physics::InstrumentPose::yaw_rad, -1},
+      {'j', 1, &physics::InstrumentPose::yaw_rad, -1},     {'l', 1, &physics::InstrumentPose::yaw_rad, +1},
       {'i', 1, &physics::InstrumentPose::pitch_rad, +1},   {'k', 1, &physics::InstrumentPose::pitch_rad, -1},
       {'u', 1, &physics::InstrumentPose::insertion_m, +1}, {'o', 1, &physics::InstrumentPose::insertion_m, -1},
       {'n', 1, &physics::InstrumentPose::roll_rad, +1},    {',', 1, &physics::InstrumentPose::roll_rad, -1},
@@ -64,7 +65,9 @@ bool ApplyInstrumentKey(char key, std::vector<physics::InstrumentPose>& poses,
 bool ApplyInstrumentDrag(std::size_t instrument, double dx_px, double dy_px,
                          std::vector<physics::InstrumentPose>& poses, const KeyboardStep& step) {
   if (instrument >= poses.size()) return false;
-  Nudge(poses[instrument], &physics::InstrumentPose::yaw_rad, -dx_px * step.angle_rad_per_pixel, 0.0, step);
+  // Yaw turns the shaft about the cranial axis: from the umbilical scope, + yaw carries the tip
+  // toward the patient's left, the picture's right (tests/field: the tip follows the hand).
+  Nudge(poses[instrument], &physics::InstrumentPose::yaw_rad, dx_px * step.angle_rad_per_pixel, 0.0, step);
   Nudge(poses[instrument], &physics::InstrumentPose::pitch_rad, -dy_px * step.angle_rad_per_pixel, 0.0, step);
   return true;
 }

@@ -87,6 +87,10 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
   });
   open_scenario_action_->setObjectName("open_scenario");
   open_scenario_action_->setEnabled(false);
+  QAction* clear_faults = session->addAction("&Clear arm faults", [this] {
+    if (arms_) arms_->ResetFaults();
+  });
+  clear_faults->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_F));
   session->addSeparator();
   QAction* quit = session->addAction("&Quit", [this] { close(); });
   quit->setObjectName("quit");
@@ -142,7 +146,7 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
   RunnerOptions ro;
   ro.scenario_name = scenario_.name;
   ro.real_time = options_.real_time;
-  std::string what;
+  std::string what, fallback;
   device::InputFrame initial;
   for (size_t i = 0; i < 2 && i < poses_.size(); ++i) initial.instruments[i].pose = poses_[i];
   try {
@@ -155,6 +159,10 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
         break;
       }
       case InputChoice::kArms: {
+        if (arms_) {  // the running bridge holds the arms' ports: release them before binding again
+          runner_.reset();
+          arms_.reset();
+        }
         auto bridge = std::make_unique<ArmBridge>(scenario_);
         ArmBridge* b = bridge.get();
         auto arms = std::make_shared<ArmInput>(b->devices(), model_->instruments, initial, [b] { b->Tick(); });
@@ -171,6 +179,8 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
   } catch (const std::exception& e) {
     ShowError(e.what());
     if (runner_) return false;  // keep the running session
+    // Never a silent fallback: the status line keeps saying why the arms are not driving.
+    fallback = std::string("Haptic arms could not start: ") + e.what() + " -- keyboard meanwhile  |  ";
     choice = InputChoice::kKeyboard;
   }
   if (choice == InputChoice::kKeyboard) {
@@ -190,7 +200,7 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
   started_unix_s_ = UnixNow();
   runner_->Start();
   statusBar()->showMessage(QString::fromStdString(
-      what + "  |  P pause, R reset, Enter end, +/- zoom, arrows look around, Shift+drag pan, F2 diagnostics"));
+      fallback + what + "  |  P pause, R reset, Enter end, +/- zoom, arrows look around, Shift+drag pan, F2 diagnostics"));
   return true;
 }
 
@@ -276,7 +286,10 @@ std::string TrainerWindow::LoopRatesSummary() const {
 
 void TrainerWindow::Tick() {
   render_stats_.Tick(LoopStats::Clock::now());
-  view_->Update(runner_->LatestFrame());
+  RenderFrame frame = runner_->LatestFrame();
+  if (arms_)
+    for (const device::ArmReport& r : arms_->Reports()) frame.arm_status.push_back(r.text);
+  view_->Update(frame);
   vtk_widget_->renderWindow()->Render();
   const RunnerStatus s = runner_->Status();
   if (diagnostics_->isVisible()) {

@@ -15,7 +15,7 @@ TEST(KeyboardControlTest, KeysMoveTheRightInstrumentByOneStep) {
   EXPECT_DOUBLE_EQ(poses[0].pitch_rad, 5 * step.angle_rad);
   EXPECT_DOUBLE_EQ(poses[1].pitch_rad, 0.0);
   ASSERT_TRUE(ApplyInstrumentKey('l', poses, max, pedal));
-  EXPECT_DOUBLE_EQ(poses[1].yaw_rad, -step.angle_rad);
+  EXPECT_DOUBLE_EQ(poses[1].yaw_rad, step.angle_rad);
   ASSERT_TRUE(ApplyInstrumentKey('u', poses, max, pedal));
   EXPECT_DOUBLE_EQ(poses[1].insertion_m, 0.1 + step.insertion_m);
   ASSERT_TRUE(ApplyInstrumentKey('x', poses, max, pedal));
@@ -52,13 +52,13 @@ TEST(KeyboardControlTest, DragsTurnAndTheWheelInsertsLikeTheKeys) {
     ApplyInstrumentKey('a', keyed, max, pedal, KeyboardStep{.angle_rad = step.angle_rad_per_pixel});
     ApplyInstrumentKey('w', keyed, max, pedal, KeyboardStep{.angle_rad = step.angle_rad_per_pixel});
   }
-  EXPECT_NEAR(poses[0].yaw_rad, 5 * step.angle_rad_per_pixel, 1e-15);
+  EXPECT_NEAR(poses[0].yaw_rad, -5 * step.angle_rad_per_pixel, 1e-15);
   EXPECT_NEAR(poses[0].yaw_rad, keyed[0].yaw_rad, 1e-15);
   EXPECT_NEAR(poses[0].pitch_rad, keyed[0].pitch_rad, 1e-15);
   EXPECT_EQ(poses[1].yaw_rad, 0.0);  // the other instrument stays
   // Right and down turn the other way; pitch stops at the limit.
   ASSERT_TRUE(ApplyInstrumentDrag(1, 10.0, 1e6, poses));
-  EXPECT_NEAR(poses[1].yaw_rad, -10 * step.angle_rad_per_pixel, 1e-15);
+  EXPECT_NEAR(poses[1].yaw_rad, 10 * step.angle_rad_per_pixel, 1e-15);
   EXPECT_EQ(poses[1].pitch_rad, -step.max_pitch_rad);
   // Wheel: a notch away from the user inserts one step, within [0, max].
   ASSERT_TRUE(ApplyInstrumentWheel(1, 2.0, poses, max));
