@@ -4,6 +4,7 @@
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "app/render/render_colours.h"
@@ -40,7 +41,7 @@ void Show(vtkTextActor* label, const std::string& text, const double rgb[3]) {
 }  // namespace
 
 FieldStatusOverlay::FieldStatusOverlay(vtkRenderer* renderer, int grasper, int hook)
-    : grasper_(grasper), hook_(hook) {
+    : renderer_(renderer), grasper_(grasper), hook_(hook) {
   grasp_ = Label(renderer, VTK_TEXT_LEFT, 0.015, 0.02);
   pedal_ = Label(renderer, VTK_TEXT_RIGHT, 0.985, 0.02);
   arms_ = Label(renderer, VTK_TEXT_CENTERED, 0.5, 0.02);
@@ -48,6 +49,10 @@ FieldStatusOverlay::FieldStatusOverlay(vtkRenderer* renderer, int grasper, int h
 }
 
 void FieldStatusOverlay::Update(const RenderFrame& frame) {
+  // Text in proportion to the picture: 18 px at 720 rows, legible and out of the way at any size.
+  const int rows = renderer_->GetSize()[1] > 0 ? renderer_->GetSize()[1] : 720;
+  for (vtkTextActor* label : {grasp_.Get(), pedal_.Get(), arms_.Get()})
+    label->GetTextProperty()->SetFontSize(std::clamp(rows / 40, 8, 30));
   const auto instrument = [&](int i) -> const InstrumentFrame* {
     return i >= 0 && static_cast<std::size_t>(i) < frame.instruments.size() ? &frame.instruments[i] : nullptr;
   };

@@ -30,6 +30,7 @@ class FieldStatusOverlay {
   std::string arm_text() const;
 
  private:
+  vtkRenderer* renderer_;
   int grasper_, hook_;
   vtkSmartPointer<vtkTextActor> grasp_, pedal_, arms_;
 };

@@ -181,6 +181,8 @@ TEST_F(TrainerGuiTest, KeysMoveTheInstrumentsPauseAndEndTheSession) {
   QTest::keyClick(gl, Qt::Key_P);
   QTest::keyClick(gl, Qt::Key_Return);
   ASSERT_TRUE(QTest::qWaitFor([&] { return w->session_finished(); }, 30000));
+  // Sessions are stored off the GUI thread: wait for the store, not just the end.
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 30000)) << w->last_error();
   auto store = OpenSessionStore(options.records_location);
   const auto sessions = store->List("resident-8");
   ASSERT_EQ(sessions.size(), 1u);
@@ -233,10 +235,10 @@ TEST_F(TrainerGuiTest, MouseDragsTurnTheInstrumentsAndTheWheelInsertsThem) {
   const auto& first = rec.frames.front().instruments;
   const auto& last = rec.frames.back().instruments;
   const KeyboardStep step;
-  EXPECT_NEAR(last[0].pose.yaw_rad - first[0].pose.yaw_rad, 40 * step.angle_rad_per_pixel, 1e-12);
+  EXPECT_NEAR(last[0].pose.yaw_rad - first[0].pose.yaw_rad, -40 * step.angle_rad_per_pixel, 1e-12);
   EXPECT_NEAR(last[0].pose.pitch_rad - first[0].pose.pitch_rad, 10 * step.angle_rad_per_pixel, 1e-12);
   EXPECT_EQ(last[0].pose.insertion_m, first[0].pose.insertion_m);
-  EXPECT_NEAR(last[1].pose.yaw_rad - first[1].pose.yaw_rad, -20 * step.angle_rad_per_pixel, 1e-12);
+  EXPECT_NEAR(last[1].pose.yaw_rad - first[1].pose.yaw_rad, 20 * step.angle_rad_per_pixel, 1e-12);
   EXPECT_EQ(last[1].pose.pitch_rad, first[1].pose.pitch_rad);
   EXPECT_NEAR(last[1].pose.insertion_m - first[1].pose.insertion_m, 3 * step.insertion_m_per_wheel_notch, 1e-12);
 }
@@ -372,8 +374,8 @@ TEST_F(TrainerGuiTest, SessionsStartedInTheSameSecondKeepTheirOwnInput) {
     for (int j = 0; j < i; ++j) EXPECT_NE(r.input_recording_path, sessions[static_cast<size_t>(j)].record.input_recording_path);
     const device::InputRecording rec = device::ReadInputRecording(r.input_recording_path);
     ASSERT_FALSE(rec.frames.empty());
-    // R put the grasper back, then D turned it by -angle_rad i + 1 times.
-    EXPECT_NEAR(rec.frames.back().instruments[0].pose.yaw_rad, start_yaw - (i + 1) * step.angle_rad, 1e-12)
+    // R put the grasper back, then D turned it by +angle_rad (toward the picture's right) i + 1 times.
+    EXPECT_NEAR(rec.frames.back().instruments[0].pose.yaw_rad, start_yaw + (i + 1) * step.angle_rad, 1e-12)
         << "session " << i << " replays another session's input";
   }
 }
