@@ -118,6 +118,10 @@ std::shared_ptr<const physics::DissectionModel> BuildDissectionModelFor(const Sc
 fx::CauteryParams DefaultCauteryParams() {
   fx::CauteryParams p;
   p.membrane.fade_rate_per_s = 4.0;
+  // A plume that hinders the view as real diathermy smoke does (so the resident learns to pause):
+  // puffs of 4 mm growing to 2.5 cm over their 1.5 s; positions and lifetimes as fx's defaults.
+  p.smoke.initial_size_m = 0.004;
+  p.smoke.growth_mps = 0.014;
   return p;
 }
 

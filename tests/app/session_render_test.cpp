@@ -34,6 +34,7 @@
 #include "physics/instrument/instrument_pose.h"
 #include "physics/mesh/triangle_mesh.h"
 #include "screen_projection.h"
+#include "../field/cie_lab.h"
 
 namespace vesica::app {
 namespace {
@@ -488,6 +489,84 @@ TEST_F(SessionRenderTest, ReplayedRecordingRendersJawsClosingAndTheGallbladderWh
   EXPECT_EQ(amber_before, 0);
   EXPECT_GT(amber, 40);
   EXPECT_EQ(amber_near, amber);
+}
+
+// Issue 30: a burn at a point whitens first (coagulation), then darkens to an obvious change of
+// colour (CIE Delta E >= 20 after 2 s); the smoke's share of the view rises while the pedal is
+// down and falls below 2 % within 1.6 s of letting go (the puffs live 1.5 s). Smoke coverage is
+// the share of the field's pixels that differ (Delta E > 3) from the same frame drawn without
+// its smoke.
+TEST_F(SessionRenderTest, BurnsWhitenThenDarkenAndSmokeClearsAfterThePedal) {
+  const physics::TriangleMesh& liver = model_->liver->rest_surface;
+  const Eigen::Vector3d target = Centroid(liver, BurnTriangle());
+  const Eigen::Vector2d target_px = Pixel(target);
+  DissectionSession session(model_, DefaultCauteryParams());
+  const auto grasper = Parked(0);
+  const auto press = Aim(1, target, 0.0015);
+  StepFor(session, 1.0, grasper, press, false);
+  // The burn is looked at with the hook lifted off it (the tool would cover it) and no smoke.
+  const auto without_smoke = [&](RenderFrame f) {
+    f.smoke.clear();
+    return f;
+  };
+  const auto burn_view = [&](RenderFrame f) {
+    f.smoke.clear();
+    f.instruments[1].pose = Parked(1);
+    f.instruments[1].past_contact_m = 0;
+    f.instruments[1].cautery_active = false;
+    return f;
+  };
+  const auto mean_lab = [&](const Picture& pic) {  // the 7 x 7 pixels at the burn
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int dr = -3; dr <= 3; ++dr)
+      for (int dc = -3; dc <= 3; ++dc) {
+        const Rgb c = pic.at(static_cast<int>(target_px.x()) + dc, static_cast<int>(target_px.y()) + dr);
+        const testing::Lab lab = testing::SrgbToLab(c.r, c.g, c.b);
+        sum += Eigen::Vector3d(lab.L, lab.a, lab.b);
+      }
+    const Eigen::Vector3d m = sum / 49.0;
+    return testing::Lab{m.x(), m.y(), m.z()};
+  };
+  const auto coverage = [&](const RenderFrame& f) {
+    if (f.smoke.empty()) return 0.0;
+    const Picture with = Render(f, "smoke");
+    const Picture clear = Render(without_smoke(f), "no_smoke");
+    int covered = 0;
+    for (int row = 0; row < kFieldRows; ++row)
+      for (int col = 0; col < kWidth; ++col) {
+        const Rgb a = with.at(col, row), b = clear.at(col, row);
+        covered += testing::DeltaE76(testing::SrgbToLab(a.r, a.g, a.b), testing::SrgbToLab(b.r, b.g, b.b)) > 3;
+      }
+    return static_cast<double>(covered) / (static_cast<double>(kFieldRows) * kWidth);
+  };
+  const testing::Lab unburnt = mean_lab(Render(burn_view(session.MakeRenderFrame()), "unburnt"));
+
+  // Pedal down: 0.3 s coagulates (whiter), 2 s chars (darker by Delta E >= 20).
+  StepFor(session, 0.3, grasper, press, true);
+  const testing::Lab early = mean_lab(Render(burn_view(session.MakeRenderFrame()), "burn_0.3s"));
+  const double smoke_early = coverage(session.MakeRenderFrame());
+  StepFor(session, 1.7, grasper, press, true);
+  const testing::Lab late = mean_lab(Render(burn_view(session.MakeRenderFrame()), "burn_2s"));
+  const double smoke_late = coverage(session.MakeRenderFrame());
+  std::printf("burn at (%.0f, %.0f): L* %.1f unburnt, %.1f after 0.3 s, %.1f after 2 s (dE %.1f); smoke %.2f %% of "
+              "the view at 0.3 s, %.2f %% at 2 s\n",
+              target_px.x(), target_px.y(), unburnt.L, early.L, late.L, testing::DeltaE76(unburnt, late),
+              100 * smoke_early, 100 * smoke_late);
+  EXPECT_GT(early.L, unburnt.L + 5) << "a fresh burn whitens";
+  EXPECT_LT(late.L, unburnt.L) << "a long burn darkens";
+  EXPECT_GE(testing::DeltaE76(unburnt, late), 20.0);
+  EXPECT_GT(smoke_late, smoke_early) << "smoke builds up while the pedal is down";
+  EXPECT_GT(smoke_late, 0.005);
+
+  // Pedal up: the plume thins and is gone below 2 % of the view within 1.6 s.
+  StepFor(session, 0.5, grasper, press, false);
+  const double smoke_after_05 = coverage(session.MakeRenderFrame());
+  StepFor(session, 1.1, grasper, press, false);
+  const double smoke_after_16 = coverage(session.MakeRenderFrame());
+  std::printf("smoke after the pedal: %.2f %% at 0.5 s, %.2f %% at 1.6 s\n", 100 * smoke_after_05,
+              100 * smoke_after_16);
+  EXPECT_LT(smoke_after_05, smoke_late);
+  EXPECT_LT(smoke_after_16, 0.02);
 }
 
 // The retracted frame of the recording at three membrane opacities.
