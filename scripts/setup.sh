@@ -18,6 +18,9 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 cd "$here"
+# ccache keys on paths relative to the checkout, so a fresh clone elsewhere (CI's) reuses the
+# objects an earlier build on this machine cached.
+export CCACHE_BASEDIR="$here"
 jobs=$(nproc)
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset" -j "$jobs"
