@@ -13,6 +13,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "app/records/csv_text.h"
 #include "app/records/default_location.h"
 #include "app/records/metric_fields.h"
 
@@ -28,34 +29,20 @@ std::string Header() {
   return header + "\n";
 }
 
-std::string Field(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c;
-  }
-  return quoted + "\"";
-}
 
-std::string DoubleText(double value) {
-  char text[32];
-  const auto result = std::to_chars(text, text + sizeof text, value);
-  return std::string(text, result.ptr);
-}
 
 std::string Row(const SessionRecord& r) {
-  std::string row = Field(r.trainee_id) + "," + Field(r.scenario) + "," + Field(r.station) + "," +
+  std::string row = CsvField(r.trainee_id) + "," + CsvField(r.scenario) + "," + CsvField(r.station) + "," +
                     std::to_string(r.started_unix_s) + "," + std::to_string(r.ended_unix_s) + "," +
-                    Field(r.input_recording_path) + "," + (r.replay ? "1" : "0") + "," + (r.unfinished ? "1" : "0") +
-                    "," + DoubleText(r.physics_lag_s);
+                    CsvField(r.input_recording_path) + "," + (r.replay ? "1" : "0") + "," + (r.unfinished ? "1" : "0") +
+                    "," + ShortestDoubleText(r.physics_lag_s);
   for (const auto& field : kMetricFields) {
     row += ",";
     std::visit(
         [&](auto member) {
           using T = std::remove_cvref_t<decltype(r.metrics.*member)>;
           if constexpr (std::is_same_v<T, double>)
-            row += DoubleText(r.metrics.*member);
+            row += ShortestDoubleText(r.metrics.*member);
           else if constexpr (std::is_same_v<T, bool>)
             row += r.metrics.*member ? "1" : "0";
           else

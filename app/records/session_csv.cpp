@@ -4,35 +4,21 @@
 #include <ostream>
 #include <variant>
 
+#include "app/records/csv_text.h"
 #include "app/records/metric_fields.h"
 #include "app/records/metric_units.h"
 
 namespace vesica::app {
 namespace {
 
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c;
-  }
-  return quoted + "\"";
-}
 
-// Shortest text that parses back to the same double.
-std::string DoubleText(double value) {
-  char text[32];
-  const auto result = std::to_chars(text, text + sizeof text, value);
-  return std::string(text, result.ptr);
-}
 
 std::string MetricText(const SessionMetrics& metrics, const MetricField& field, double scale) {
   return std::visit(
       [&](auto member) -> std::string {
         const auto value = metrics.*member;
         if constexpr (std::is_same_v<decltype(value), const double>)
-          return DoubleText(value * scale);
+          return ShortestDoubleText(value * scale);
         else if constexpr (std::is_same_v<decltype(value), const bool>)
           return value ? "1" : "0";
         else
@@ -59,7 +45,7 @@ void WriteSessionsCsv(const std::vector<StoredSession>& sessions, std::ostream& 
     out << session.id << ',' << CsvField(r.trainee_id) << ',' << CsvField(r.scenario) << ',' << CsvField(r.station)
         << ',' << FormatUtcIso8601(r.started_unix_s) << ',' << FormatUtcIso8601(r.ended_unix_s) << ','
         << CsvField(r.input_recording_path) << ',' << (r.replay ? 1 : 0) << ',' << (r.unfinished ? 1 : 0) << ','
-        << DoubleText(r.physics_lag_s);
+        << ShortestDoubleText(r.physics_lag_s);
     for (std::size_t i = 0; i < kMetricFields.size(); ++i)
       out << ',' << MetricText(r.metrics, kMetricFields[i], kMetricDisplayUnits[i].scale);
     out << '\n';
