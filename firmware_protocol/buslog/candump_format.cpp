@@ -15,6 +15,7 @@ constexpr std::uint32_t kEffMask = 0x1FFFFFFF;
 constexpr std::uint32_t kErrFlag = 0x20000000;  // SocketCAN CAN_ERR_FLAG
 constexpr std::uint8_t kFdBrs = 0x01;           // SocketCAN CANFD_BRS
 constexpr std::uint8_t kFdEsi = 0x02;           // SocketCAN CANFD_ESI
+constexpr std::uint8_t kFdFdf = 0x04;           // SocketCAN CANFD_FDF: Linux >= 6.0 sets it on every FD frame
 constexpr std::size_t kMaxInterfaceLength = 15; // IFNAMSIZ - 1
 constexpr long long kMaxSeconds = 9000000000LL;  // nanoseconds since 1970 must fit an int64
 
@@ -69,7 +70,7 @@ CandumpLine parse_frame(std::string_view text, CanFrame& f, std::string& error) 
   if (!rest.empty() && rest[0] == '#') {
     if (rest.size() < 2 || hex_value(rest[1]) < 0) return malformed(error, "CAN FD frame without its flags digit");
     const int fd_flags = hex_value(rest[1]);
-    if (fd_flags & ~(kFdBrs | kFdEsi)) return malformed(error, "CAN FD flags " + std::string(1, rest[1]) + " unknown");
+    if (fd_flags & ~(kFdBrs | kFdEsi | kFdFdf)) return malformed(error, "CAN FD flags " + std::string(1, rest[1]) + " unknown");
     f.flags |= CanFrame::kFdFrame;
     if (fd_flags & kFdBrs) f.flags |= CanFrame::kBitRateSwitch;
     max_len = kFdMaxLength;
@@ -116,7 +117,7 @@ std::string format_candump_frame(const CanFrame& f) {
   }
   if (f.fd()) {
     s += '#';
-    s += kHex[f.brs() ? kFdBrs : 0];
+    s += kHex[kFdFdf | (f.brs() ? kFdBrs : 0)];  // as candump writes on Linux >= 6.0
   }
   for (std::uint8_t i = 0; i < f.len; ++i) append_hex(s, f.data[i], 2);
   return s;

@@ -2,7 +2,8 @@
 //   123#DEADBEEF          classic frame, 11-bit id (3 hex digits), data in hex pairs
 //   1ABCDEF0#11           29-bit id (8 hex digits)
 //   123#R                 remote request (123#R3: with a requested length)
-//   123##1AABBCC          CAN FD: one hex digit of flags (1 = bit-rate switch, 2 = ESI), then data
+//   123##5AABBCC          CAN FD: one hex digit of flags (1 = bit-rate switch, 2 = ESI, 4 = FD
+//                         frame; Linux >= 6.0 sets 4 on every FD frame and candump writes it), then data
 // exactly as `candump -l` / `candump -L` write it (upper-case hex, no separators), so canplayer,
 // log2asc and candump's own logs interchange with ours. Parsing also takes what canplayer takes:
 // lower case and '.' between data bytes. Lines not starting with '(' are comments (canplayer's rule).

@@ -32,11 +32,11 @@ TEST(CandumpFormatTest, ExtendedRemoteAndFdFramesAsCandumpWritesThem) {
   CanFrame rtr3 = frame(0x123, {}, CanFrame::kRemote);
   rtr3.len = 3;
   EXPECT_EQ(format_candump_frame(rtr3), "123#R3");
-  EXPECT_EQ(format_candump_frame(frame(0x123, {0xAA, 0xBB}, CanFrame::kFdFrame)), "123##0AABB");
-  EXPECT_EQ(format_candump_frame(frame(0x123, {0xAA}, CanFrame::kFdFrame | CanFrame::kBitRateSwitch)), "123##1AA");
+  EXPECT_EQ(format_candump_frame(frame(0x123, {0xAA, 0xBB}, CanFrame::kFdFrame)), "123##4AABB");
+  EXPECT_EQ(format_candump_frame(frame(0x123, {0xAA}, CanFrame::kFdFrame | CanFrame::kBitRateSwitch)), "123##5AA");
   CanFrame fd12 = frame(0x0F0, {}, CanFrame::kFdFrame);
   fd12.len = 12;
-  EXPECT_EQ(format_candump_frame(fd12), "0F0##0000000000000000000000000");
+  EXPECT_EQ(format_candump_frame(fd12), "0F0##4000000000000000000000000");
 }
 
 TEST(CandumpFormatTest, LineHasTenDigitSecondsSixDigitMicrosAndInterface) {
@@ -72,6 +72,11 @@ TEST(CandumpFormatTest, ParsesWhatCanplayerAccepts) {
   // candump right-aligns interface names of different lengths.
   ASSERT_EQ(parse_candump_line("(0000000001.000000)  can0 12345678##3AA", e, err), CandumpLine::Frame) << err;
   EXPECT_EQ(e.frame, frame(0x12345678, {0xAA}, CanFrame::kExtendedId | CanFrame::kFdFrame | CanFrame::kBitRateSwitch));
+  // Linux < 6.0 does not set the FD flag (4) in the digit: both forms are FD frames.
+  ASSERT_EQ(parse_candump_line("(0000000001.000000) can0 123##0AA", e, err), CandumpLine::Frame) << err;
+  EXPECT_EQ(e.frame, frame(0x123, {0xAA}, CanFrame::kFdFrame));
+  ASSERT_EQ(parse_candump_line("(0000000001.000000) can0 123##7AA", e, err), CandumpLine::Frame) << err;
+  EXPECT_EQ(e.frame, frame(0x123, {0xAA}, CanFrame::kFdFrame | CanFrame::kBitRateSwitch));
   ASSERT_EQ(parse_candump_line("(0000000001.000000) can0 123#r5", e, err), CandumpLine::Frame) << err;
   EXPECT_TRUE(e.frame.remote());
   EXPECT_EQ(e.frame.len, 5);
@@ -103,7 +108,7 @@ TEST(CandumpFormatTest, EachMalformedLineSaysWhereAndWhy) {
       {"(1700000000.000042) can0 181#0", "column 26: data '0' is not hex byte pairs"},
       {"(1700000000.000042) can0 181#000102030405060708", "column 26: data longer than 8 bytes"},
       {"(1700000000.000042) can0 181##", "column 26: CAN FD frame without its flags digit"},
-      {"(1700000000.000042) can0 181##4", "column 26: CAN FD flags 4 unknown"},
+      {"(1700000000.000042) can0 181##8", "column 26: CAN FD flags 8 unknown"},
       {"(1700000000.000042) can0 181##00000000000000000000000", "column 26: CAN FD length 11 is not a DLC step"},
       {"(1700000000.000042) can0 181#R9", "column 26: remote frame length '9' is not 0..8"},
   };
