@@ -69,12 +69,12 @@ struct BenchHardware {
   std::vector<std::uint8_t> storage;  // empty: blank flash
   HardwareSample sense() { return sample; }
   void apply_currents(const JointArray& a) { applied = a; }
-  bool storage_read(std::uint8_t* dst, std::size_t n) {
-    if (storage.size() < n) return false;
-    for (std::size_t i = 0; i < n; ++i) dst[i] = storage[i];
+  bool storage_read(std::size_t offset, std::uint8_t* dst, std::size_t n) {
+    if (storage.size() < offset + n) return false;
+    for (std::size_t i = 0; i < n; ++i) dst[i] = storage[offset + i];
     return true;
   }
-  bool storage_write(const std::uint8_t*, std::size_t) { return true; }
+  bool storage_write(std::size_t, const std::uint8_t*, std::size_t) { return true; }
 };
 
 // One 1 kHz firmware cycle: receive a command, answer JointState, run the control tick.

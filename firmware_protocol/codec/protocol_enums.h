@@ -8,7 +8,9 @@
 namespace vesica::fp {
 
 inline constexpr std::uint8_t kProtocolMajor = 1;
-inline constexpr std::uint8_t kProtocolMinor = 0;
+// Minor 1 adds the host-driven calibration session, the A/B calibration slots and their
+// parameters (docs/protocol.md sections 9 and 11).
+inline constexpr std::uint8_t kProtocolMinor = 1;
 inline constexpr int kJointCount = 3;  // actuated joints per arm: yaw, pitch, insertion
 
 // Node state machine (docs/protocol.md "Node state machine").
@@ -106,7 +108,9 @@ enum class AbortCode : std::uint32_t {
   WrongState = 0x08000022,
 };
 
-enum class CalibrationProcedure : std::uint8_t { Abort = 0, FindIndex = 1, CurrentOffset = 2 };
+// Session (minor 1): the host drives the motors with CurrentCommand inside the node's calibration
+// envelope; it ends in Save (kept) or anything else (the stored calibration is reloaded).
+enum class CalibrationProcedure : std::uint8_t { Abort = 0, FindIndex = 1, CurrentOffset = 2, Session = 3 };
 enum class CalibrationStatus : std::uint8_t { Idle = 0, Running = 1, Done = 2, Failed = 3, Aborted = 4 };
 
 const char* to_string(NodeState s);

@@ -17,12 +17,14 @@ ArmEmulator::ArmEmulator(Transport& transport, const ArmPlantParameters& params,
       origin_(transport.now()),
       next_tick_(origin_) {
   if (config.node_id != 1) {
-    // Factory programming: a parameter image carrying the node id.
+    // Factory programming: slot A, generation 1, carrying the node id.
     ParameterStore store;
     store.write(param::kNodeId, ParameterType::U32, config.node_id);
     std::uint8_t image[ParameterStore::kImageSize];
     const std::size_t n = store.serialize(image, sizeof image);
-    board_->storage_write(image, n);
+    std::uint8_t slot_image[slot::kSize];
+    const std::size_t m = encode_slot(SlotHeader{1, 0, 0, config.serial}, image, n, slot_image, sizeof slot_image);
+    board_->storage_write(slot::offset(0), slot_image, m);
   }
   node_->boot(Micros(next_tick_));
   Flush(next_tick_);

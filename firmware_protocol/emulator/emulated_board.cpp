@@ -18,7 +18,8 @@ JointArray EmulatedBoard::EncoderPositions(const PlantSensors& s) const {
   for (int m = 0; m < kJointCount; ++m) {
     const double joint_per_count =
         2.0 * std::numbers::pi / p.encoder[m].counts_per_rev / p.motor[m].transmission_ratio;
-    out[m] = static_cast<float>(config_.park_position[m] + s.encoder_count[m] * joint_per_count);
+    const int direction = p.encoder[m].direction < 0 ? -1 : 1;
+    out[m] = static_cast<float>(config_.park_position[m] + direction * s.encoder_count[m] * joint_per_count);
   }
   return out;
 }
@@ -58,15 +59,12 @@ void EmulatedBoard::apply_currents(const JointArray& amps) {
   plant_.SetCurrentSetpoints({amps[0], amps[1], amps[2]});
 }
 
-bool EmulatedBoard::storage_read(std::uint8_t* dst, std::size_t n) {
-  if (flash_.size() < n) return false;  // blank or short flash: the node falls back to defaults
-  for (std::size_t i = 0; i < n; ++i) dst[i] = flash_[i];
-  return true;
+bool EmulatedBoard::storage_read(std::size_t offset, std::uint8_t* dst, std::size_t n) {
+  return flash_.Read(offset, dst, n);
 }
 
-bool EmulatedBoard::storage_write(const std::uint8_t* src, std::size_t n) {
-  flash_.assign(src, src + n);
-  return true;
+bool EmulatedBoard::storage_write(std::size_t offset, const std::uint8_t* src, std::size_t n) {
+  return flash_.Write(offset, src, n);
 }
 
 }  // namespace vesica::fp::emulator

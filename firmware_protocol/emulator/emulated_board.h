@@ -6,13 +6,15 @@
 #include <vector>
 
 #include "firmware_protocol/emulator/arm_plant.h"
+#include "firmware_protocol/emulator/flash_model.h"
 #include "firmware_protocol/node/node_hardware.h"
 
 namespace vesica::fp::emulator {
 
 /// The arm's controller board as the reference firmware node sees it (NodeHardware): encoder
 /// counts turned into joint positions, a filtered velocity estimate, current sensors, the roll,
-/// jaw, pedal and E-stop inputs, and a parameter flash kept in memory.
+/// jaw, pedal and E-stop inputs, and the parameter flash (FlashModel: erase before write, power
+/// can be cut at any byte).
 ///
 /// Incremental encoders give positions relative to power-up; the board assumes the arm powers up
 /// parked at `park_position` (yaw, pitch, insertion), so an arm that was not quite parked reads
@@ -29,13 +31,13 @@ class EmulatedBoard {
   // NodeHardware
   HardwareSample sense();
   void apply_currents(const JointArray& amps);
-  bool storage_read(std::uint8_t* dst, std::size_t n);
-  bool storage_write(const std::uint8_t* src, std::size_t n);
+  bool storage_read(std::size_t offset, std::uint8_t* dst, std::size_t n);
+  bool storage_write(std::size_t offset, const std::uint8_t* src, std::size_t n);
 
   void set_estop_input(bool open) { estop_open_ = open; }
   void set_handle_button(bool pressed) { handle_button_ = pressed; }
-  /// Flash contents (empty = blank board). Tests use it to corrupt the image.
-  std::vector<std::uint8_t>& flash() { return flash_; }
+  /// The parameter flash (all 0xFF = blank board). Tests corrupt it or cut its power.
+  FlashModel& flash() { return flash_; }
   const JointArray& applied_currents() const { return applied_; }
 
  private:
@@ -50,7 +52,7 @@ class EmulatedBoard {
   double last_sense_s_ = 0.0;
   bool estop_open_ = false;
   bool handle_button_ = false;
-  std::vector<std::uint8_t> flash_;
+  FlashModel flash_;
 };
 
 static_assert(NodeHardware<EmulatedBoard>);

@@ -10,6 +10,7 @@ namespace vesica::fp::emulator {
 struct EncoderParameters {
   std::int32_t counts_per_rev = 2048;   ///< after x4 quadrature decoding, > 0
   double index_angle_rad = 0.0;         ///< motor angle of the index edge, mounting dependent
+  int direction = 1;                    ///< +1, or -1 for an encoder that counts down as the joint moves up
 };
 
 class IncrementalEncoder {

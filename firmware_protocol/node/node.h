@@ -1,6 +1,7 @@
 // Reference firmware node of one Vesica arm: NMT state machine, explicit enable, command watchdog,
 // current/torque/velocity/joint-range limits with the active limiter reported, E-stop, latched
-// faults with EMCY and history, typed parameters with CRC-protected storage, calibration.
+// faults with EMCY and history, typed parameters in two CRC-protected calibration slots (A/B),
+// node-run calibration procedures and the host-driven calibration session.
 // Use (firmware main loop or the arm emulator):
 //   Node<Board> node(board, serial);  node.boot(now_us);
 //   for each received frame: node.on_frame(frame, now_us);
@@ -14,6 +15,7 @@
 #include <cstdint>
 
 #include "firmware_protocol/codec/codec.h"
+#include "firmware_protocol/node/calibration_slot.h"
 #include "firmware_protocol/node/fault_history.h"
 #include "firmware_protocol/node/node_hardware.h"
 #include "firmware_protocol/node/parameter_store.h"
@@ -30,8 +32,9 @@ class Node {
 
   Node(Hw& hw, std::uint32_t serial) : hw_(hw), serial_(serial) {}
 
-  // Power-on / NMT reset node: load parameters (CRC-checked), send the boot-up heartbeat and
-  // Identity, enter PreOperational. A corrupt parameter image latches FaultCode::ParameterCrc.
+  // Power-on / NMT reset node: load parameters from the newest valid calibration slot, send the
+  // boot-up heartbeat and Identity, enter PreOperational. No valid slot but a corrupt one latches
+  // FaultCode::ParameterCrc (defaults in use); blank storage is a new board (defaults, no fault).
   void boot(std::uint64_t now_us);
   void on_frame(const CanFrame& frame, std::uint64_t now_us);
   void tick(std::uint64_t now_us);
@@ -49,6 +52,10 @@ class Node {
   std::uint8_t negotiated_minor() const { return negotiated_minor_; }
   std::uint32_t tx_overflows() const { return tx_overflows_; }
   CalibrationStatus calibration_status() const { return cal_status_; }
+  bool calibration_session_open() const { return session_open_; }
+  int active_slot() const { return active_slot_; }  // -1: running on defaults
+  StorageResult slot_status(int s) const { return slot_status_[s]; }
+  std::uint32_t slot_generation(int s) const { return slot_generation_[s]; }
 
  private:
   void queue(const Message& m);
@@ -65,6 +72,15 @@ class Node {
   JointArray limited_output(const HardwareSample& s);
   JointArray calibration_output(const HardwareSample& s, std::uint64_t now_us);
   void finish_calibration(CalibrationStatus status, std::int32_t result);
+  JointArray session_output(const HardwareSample& s);
+  void end_session(CalibrationStatus status);
+  StorageResult load_parameters();
+  void reload_parameters();
+  bool save_parameters();
+  void sync_slot_parameters();
+  int encoder_direction(int j) const {
+    return static_cast<std::int32_t>(params_.u32(static_cast<std::uint16_t>(param::kEncoderDirection + j))) < 0 ? -1 : 1;
+  }
   void sync_fault_parameters();
   static float clampf(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
 
@@ -100,6 +116,14 @@ class Node {
   JointArray cal_sum_{};
   std::uint64_t cal_started_us_ = 0;
   std::uint64_t next_cal_progress_us_ = 0;
+  // Host-driven calibration session (CalibrationProcedure::Session).
+  bool session_open_ = false;
+  std::uint8_t session_mask_ = 0;
+  float session_max_current_ = 0;
+  // Calibration slots as found at boot / after the last save.
+  StorageResult slot_status_[slot::kCount] = {StorageResult::BadMagic, StorageResult::BadMagic};
+  std::uint32_t slot_generation_[slot::kCount] = {};
+  int active_slot_ = -1;
   // Transmit ring.
   CanFrame tx_[kTxQueueDepth];
   std::size_t tx_head_ = 0;
@@ -119,12 +143,10 @@ void Node<Hw>::boot(std::uint64_t now_us) {
   negotiated_minor_ = 0xFF;
   command_sequence_.reset();
   cal_status_ = CalibrationStatus::Idle;
+  session_open_ = false;
   faults_.clear_latch();
 
-  std::uint8_t image[ParameterStore::kImageSize];
-  StorageResult loaded = StorageResult::BadMagic;
-  if (hw_.storage_read(image, sizeof image)) loaded = params_.deserialize(image, sizeof image);
-  if (loaded != StorageResult::Ok) params_.restore_defaults();
+  const StorageResult loaded = load_parameters();
   std::uint32_t history[param::kFaultHistoryDepth];
   for (int k = 0; k < param::kFaultHistoryDepth; ++k) history[k] = params_.u32(param::kFaultHistory + k);
   faults_.restore(params_.u32(param::kFaultHistoryCount), history);
@@ -134,7 +156,8 @@ void Node<Hw>::boot(std::uint64_t now_us) {
   send_heartbeat();  // boot-up message: heartbeat with state Boot (CANopen 0x00)
   nmt_state_ = NodeState::PreOperational;
   send_identity();
-  // Blank storage (BadMagic) is a new board: defaults, no fault. Anything else is corruption.
+  // Blank storage (BadMagic) is a new board: defaults, no fault. No valid slot and a corrupt one
+  // means the calibration is gone: the operator must know.
   if (loaded != StorageResult::Ok && loaded != StorageResult::BadMagic)
     raise(FaultCode::ParameterCrc, 0xFF, static_cast<std::int16_t>(loaded));
   next_heartbeat_us_ = now_us + 1000ull * params_.u32(param::kHeartbeatPeriod_ms);
@@ -190,6 +213,8 @@ void Node<Hw>::on_frame(const CanFrame& frame, std::uint64_t now_us) {
 template <VESICA_NODE_HARDWARE Hw>
 void Node<Hw>::handle_nmt(const Nmt& m, std::uint64_t now_us) {
   if (m.target_node != 0 && m.target_node != node_id_) return;
+  // A calibration session lives in pre-operational only; anything else ends it unsaved.
+  if (session_open_ && m.command != NmtCommand::EnterPreOperational) end_session(CalibrationStatus::Aborted);
   switch (m.command) {
     case NmtCommand::Start: nmt_state_ = NodeState::Operational; break;
     case NmtCommand::Stop: nmt_state_ = NodeState::Stopped; enabled_ = false; break;
@@ -219,7 +244,8 @@ void Node<Hw>::handle_control(const Control& m, std::uint64_t now_us) {
     case ControlCommand::Enable:
       // Explicit enable: only operational, fault-free, negotiated, E-stop loop closed, no calibration.
       if (nmt_state_ == NodeState::Operational && faults_.latched() == FaultCode::None &&
-          negotiated_minor_ != 0xFF && !last_sample_.estop_input && cal_status_ != CalibrationStatus::Running) {
+          negotiated_minor_ != 0xFF && !last_sample_.estop_input && cal_status_ != CalibrationStatus::Running &&
+          !session_open_) {
         enabled_ = true;
         command_ = JointArray{};
         command_sequence_.reset();
@@ -263,11 +289,11 @@ void Node<Hw>::handle_parameter(const ParameterRequest& m) {
       if (abort == AbortCode::None) r.raw_value = m.raw_value;
       break;
     case ParameterOp::Save: {
-      if (enabled_) { abort = AbortCode::WrongState; break; }
+      if (enabled_ || cal_status_ == CalibrationStatus::Running) { abort = AbortCode::WrongState; break; }
       sync_fault_parameters();
-      std::uint8_t image[ParameterStore::kImageSize];
-      const std::size_t n = params_.serialize(image, sizeof image);
-      if (n == 0 || !hw_.storage_write(image, n)) abort = AbortCode::StorageFailed;
+      if (!save_parameters()) abort = AbortCode::StorageFailed;
+      // A save is how a calibration session keeps its results; a failed one keeps the old.
+      if (session_open_) end_session(abort == AbortCode::None ? CalibrationStatus::Done : CalibrationStatus::Failed);
       break;
     }
     case ParameterOp::RestoreDefaults:
@@ -288,15 +314,30 @@ template <VESICA_NODE_HARDWARE Hw>
 void Node<Hw>::handle_calibration(const CalibrationCommand& m, std::uint64_t now_us) {
   if (m.procedure == CalibrationProcedure::Abort) {
     if (cal_status_ == CalibrationStatus::Running) finish_calibration(CalibrationStatus::Aborted, 0);
+    if (session_open_) end_session(CalibrationStatus::Aborted);
     return;
   }
-  cal_procedure_ = m.procedure;
   // Calibration moves motors on its own authority: only pre-operational, disabled and fault-free.
   if (nmt_state_ != NodeState::PreOperational || enabled_ || faults_.latched() != FaultCode::None ||
-      m.joint_mask == 0 || cal_status_ == CalibrationStatus::Running) {
+      m.joint_mask == 0 || cal_status_ == CalibrationStatus::Running ||
+      (m.procedure == CalibrationProcedure::Session && session_open_)) {
     queue(CalibrationProgress{node_id_, m.procedure, CalibrationStatus::Failed, 0, 0, -1});
     return;
   }
+  if (m.procedure == CalibrationProcedure::Session) {
+    // The host drives the masked joints with CurrentCommand, bounded by max_current; the
+    // watchdog runs as when enabled, so a lost host ends the session within its timeout.
+    session_open_ = true;
+    session_mask_ = m.joint_mask;
+    session_max_current_ = m.max_current;
+    command_ = JointArray{};
+    command_mode_ = CommandMode::MotorCurrent;
+    command_sequence_.reset();
+    last_command_us_ = now_us;
+    queue(CalibrationProgress{node_id_, m.procedure, CalibrationStatus::Running, 0, 0, 0});
+    return;
+  }
+  cal_procedure_ = m.procedure;
   cal_status_ = CalibrationStatus::Running;
   cal_mask_ = m.joint_mask;
   cal_max_current_ = m.max_current;
@@ -329,7 +370,9 @@ JointArray Node<Hw>::calibration_output(const HardwareSample& s, std::uint64_t n
       std::int32_t result_uA = 0;
       for (int j = 0; j < kJointCount; ++j) {
         if (!(cal_mask_ & (1u << j))) continue;
-        const float offset = cal_sum_[j] / static_cast<float>(cal_samples_);
+        // The sample already has the offset in force subtracted: the mean is what is left.
+        const float offset = params_.f32(static_cast<std::uint16_t>(param::kCurrentOffset + j)) +
+                             cal_sum_[j] / static_cast<float>(cal_samples_);
         params_.set_internal_f32(static_cast<std::uint16_t>(param::kCurrentOffset + j), clampf(offset, -5, 5));
         result_uA = static_cast<std::int32_t>(std::lround(offset * 1e6f));
         cal_joint_ = static_cast<std::uint8_t>(j);
@@ -345,8 +388,10 @@ JointArray Node<Hw>::calibration_output(const HardwareSample& s, std::uint64_t n
       return out;
     }
     if (s.index_seen[cal_joint_]) {
-      const float raw = s.position[cal_joint_];
-      params_.set_internal_f32(static_cast<std::uint16_t>(param::kPositionOffset + cal_joint_), clampf(-raw, -10, 10));
+      // The sample carries the offset in force: shift it so that the index reads zero.
+      const auto index = static_cast<std::uint16_t>(param::kPositionOffset + cal_joint_);
+      const float raw = s.position[cal_joint_] - params_.f32(index);
+      params_.set_internal_f32(index, clampf(-raw, -10, 10));
       const std::uint8_t done_joint = cal_joint_;
       ++cal_joint_;
       while (cal_joint_ < kJointCount && !(cal_mask_ & (1u << cal_joint_))) ++cal_joint_;
@@ -375,21 +420,30 @@ void Node<Hw>::tick(std::uint64_t now_us) {
   if (nmt_state_ == NodeState::Boot) return;
   HardwareSample s = hw_.sense();
   for (int j = 0; j < kJointCount; ++j) {
-    s.position[j] += params_.f32(static_cast<std::uint16_t>(param::kPositionOffset + j));
+    const float dir = static_cast<float>(encoder_direction(j));
+    s.position[j] = dir * s.position[j] + params_.f32(static_cast<std::uint16_t>(param::kPositionOffset + j));
+    s.velocity[j] *= dir;
     s.current[j] -= params_.f32(static_cast<std::uint16_t>(param::kCurrentOffset + j));
   }
   last_sample_ = s;
   position_ = s.position;
   check_faults(s, now_us);
+  const bool faulted = faults_.latched() != FaultCode::None;
+  if (session_open_ && (faulted || nmt_state_ != NodeState::PreOperational)) end_session(CalibrationStatus::Aborted);
 
-  if (cal_status_ == CalibrationStatus::Running && faults_.latched() == FaultCode::None) {
+  if (cal_status_ == CalibrationStatus::Running && !faulted && nmt_state_ == NodeState::PreOperational) {
     applied_ = calibration_output(s, now_us);
     limiter_ = Limiter::None;
   } else {
     if (cal_status_ == CalibrationStatus::Running) finish_calibration(CalibrationStatus::Aborted, 0);
-    applied_ = limited_output(s);
+    applied_ = session_open_ ? session_output(s) : limited_output(s);
   }
-  hw_.apply_currents(applied_);
+  // The drive regulates the sensor's reading: add the measured sensor offset so the motor gets
+  // the current asked for. Zero stays zero (bridge off).
+  JointArray drive{};
+  for (int j = 0; j < kJointCount; ++j)
+    drive[j] = applied_[j] == 0.0f ? 0.0f : applied_[j] + params_.f32(static_cast<std::uint16_t>(param::kCurrentOffset + j));
+  hw_.apply_currents(drive);
 
   if (now_us >= next_heartbeat_us_) {
     send_heartbeat();
@@ -410,7 +464,7 @@ template <VESICA_NODE_HARDWARE Hw>
 void Node<Hw>::check_faults(const HardwareSample& s, std::uint64_t now_us) {
   if (s.estop_input) raise(FaultCode::EmergencyStop, 0xFF, 1);
   if (faults_.latched() != FaultCode::None) return;
-  if (enabled_) {
+  if (enabled_ || session_open_) {
     const std::uint64_t silent_us = now_us - last_command_us_;
     if (silent_us > params_.u32(param::kWatchdogTimeout_us)) {
       raise(FaultCode::CommandWatchdog, 0xFF, static_cast<std::int16_t>(silent_us / 1000 > 32767 ? 32767 : silent_us / 1000));
@@ -464,6 +518,138 @@ JointArray Node<Hw>::limited_output(const HardwareSample& s) {
   }
   limiter_ = worst;
   return out;
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+JointArray Node<Hw>::session_output(const HardwareSample& s) {
+  // Host-driven calibration: the masked joints get the host's current within the session's
+  // bound; the velocity limit holds. No joint-range limit: the range is what is being measured.
+  JointArray out{};
+  Limiter worst = Limiter::None;
+  for (int j = 0; j < kJointCount; ++j) {
+    if (!(session_mask_ & (1u << j))) continue;
+    const auto jj = static_cast<std::uint16_t>(j);
+    const float nm_per_A = params_.f32(param::kTorqueConstant + jj) * params_.f32(param::kGearRatio + jj);
+    float amps = command_mode_ == CommandMode::JointTorque ? command_[j] / nm_per_A : command_[j];
+    const float bound = clampf(session_max_current_, 0, params_.f32(param::kMaxCurrent + jj));
+    if (std::fabs(amps) > bound) { amps = std::copysign(bound, amps); worst = Limiter::Current; }
+    const float v = s.velocity[j];
+    if (std::fabs(v) > params_.f32(param::kMaxVelocity + jj) && amps * v > 0) { amps = 0; worst = Limiter::Velocity; }
+    out[j] = amps;
+  }
+  limiter_ = worst;
+  return out;
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::end_session(CalibrationStatus status) {
+  session_open_ = false;
+  command_ = JointArray{};
+  applied_ = JointArray{};
+  hw_.apply_currents(applied_);
+  // Unsaved: whatever the host wrote during the session goes; the stored calibration is in force.
+  if (status != CalibrationStatus::Done) reload_parameters();
+  queue(CalibrationProgress{node_id_, CalibrationProcedure::Session, status,
+                            static_cast<std::uint8_t>(status == CalibrationStatus::Done ? 100 : 0), 0, 0});
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+StorageResult Node<Hw>::load_parameters() {
+  std::uint8_t buf[slot::kSize];
+  SlotHeader headers[slot::kCount];
+  for (int s = 0; s < slot::kCount; ++s) {
+    slot_status_[s] = StorageResult::BadMagic;
+    slot_generation_[s] = 0;
+    if (!hw_.storage_read(slot::offset(s), buf, slot::kSize)) continue;
+    const SlotCheck c = check_slot(buf, slot::kSize);
+    slot_status_[s] = c.status;
+    if (c.status != StorageResult::Ok) continue;
+    ParameterStore scratch;  // a slot counts as valid only if its image loads too
+    const StorageResult image = scratch.deserialize(buf + slot::kHeaderSize, ParameterStore::kImageSize);
+    if (image != StorageResult::Ok) {
+      slot_status_[s] = image == StorageResult::BadMagic ? StorageResult::BadCrc : image;
+      continue;
+    }
+    slot_generation_[s] = c.header.generation;
+    headers[s] = c.header;
+  }
+  params_.restore_defaults();
+  active_slot_ = choose_boot_slot(slot_status_, slot_generation_);
+  StorageResult result = StorageResult::BadMagic;
+  if (active_slot_ >= 0 && hw_.storage_read(slot::offset(active_slot_), buf, slot::kSize) &&
+      params_.deserialize(buf + slot::kHeaderSize, ParameterStore::kImageSize) == StorageResult::Ok) {
+    params_.set_internal(param::kCalibrationDate_s, headers[active_slot_].date_s);
+    params_.set_internal(param::kCalibrationToolVersion, headers[active_slot_].tool_version);
+    result = StorageResult::Ok;
+  } else {
+    active_slot_ = -1;
+    params_.restore_defaults();
+    // A board saved before protocol 1.1 holds one bare parameter image at offset 0: slot A, generation 0.
+    std::uint8_t legacy[ParameterStore::kImageSize];
+    if (hw_.storage_read(0, legacy, sizeof legacy) && slot_detail::get_u32(legacy) == ParameterStore::kMagic) {
+      const StorageResult r = params_.deserialize(legacy, sizeof legacy);
+      slot_status_[0] = r;
+      if (r == StorageResult::Ok) active_slot_ = 0;
+      else params_.restore_defaults();
+    }
+    if (active_slot_ == 0) result = StorageResult::Ok;
+    for (int s = 0; s < slot::kCount && result != StorageResult::Ok; ++s)
+      if (slot_status_[s] != StorageResult::BadMagic) result = slot_status_[s];
+  }
+  sync_slot_parameters();
+  return result;
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::reload_parameters() {
+  load_parameters();
+  params_.set_internal(param::kSerial, serial_);
+  params_.set_internal(param::kNodeId, node_id_);
+  sync_fault_parameters();
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+bool Node<Hw>::save_parameters() {
+  // Never the newest valid slot: a write cut at any byte leaves that one as it was.
+  const int target = save_target(slot_status_, slot_generation_);
+  std::uint32_t generation = 0;
+  for (int s = 0; s < slot::kCount; ++s)
+    if (slot_status_[s] == StorageResult::Ok && slot_generation_[s] > generation) generation = slot_generation_[s];
+  const SlotHeader header{generation + 1, params_.u32(param::kCalibrationDate_s),
+                          params_.u32(param::kCalibrationToolVersion), serial_};
+  std::uint8_t image[ParameterStore::kImageSize];
+  std::uint8_t out[slot::kSize];
+  if (params_.serialize(image, sizeof image) == 0 || encode_slot(header, image, sizeof image, out, sizeof out) == 0)
+    return false;
+  const bool written = hw_.storage_write(slot::offset(target), out, slot::kSize);
+  // What the storage holds now decides, whatever the write reported.
+  std::uint8_t back[slot::kSize];
+  const bool read = hw_.storage_read(slot::offset(target), back, slot::kSize);
+  bool same = read;
+  for (std::size_t i = 0; same && i < slot::kSize; ++i) same = back[i] == out[i];
+  if (same) {
+    slot_status_[target] = StorageResult::Ok;
+    slot_generation_[target] = header.generation;
+    active_slot_ = target;
+  } else {
+    // Untouched (still the older valid slot) or spoilt: report what is there.
+    const StorageResult now = read ? check_slot(back, slot::kSize).status : StorageResult::BadMagic;
+    if (now != StorageResult::Ok) {
+      slot_status_[target] = now;
+      slot_generation_[target] = 0;
+    }
+  }
+  sync_slot_parameters();
+  return written && same;
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::sync_slot_parameters() {
+  params_.set_internal(param::kActiveSlot, active_slot_ < 0 ? slot::kNoSlot : static_cast<std::uint32_t>(active_slot_));
+  for (int s = 0; s < slot::kCount; ++s) {
+    params_.set_internal(static_cast<std::uint16_t>(param::kSlotStatus + s), static_cast<std::uint32_t>(slot_status_[s]));
+    params_.set_internal(static_cast<std::uint16_t>(param::kSlotGeneration + s), slot_generation_[s]);
+  }
 }
 
 template <VESICA_NODE_HARDWARE Hw>

@@ -13,8 +13,8 @@ namespace cxx17_check {
 struct Cxx17CheckBoard {
   HardwareSample sense() { return {}; }
   void apply_currents(const JointArray&) {}
-  bool storage_read(std::uint8_t*, std::size_t) { return false; }
-  bool storage_write(const std::uint8_t*, std::size_t) { return false; }
+  bool storage_read(std::size_t, std::uint8_t*, std::size_t) { return false; }
+  bool storage_write(std::size_t, const std::uint8_t*, std::size_t) { return false; }
 };
 
 }  // namespace cxx17_check

@@ -32,14 +32,16 @@ struct HardwareSample {
 
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
 // sense(): read sensors. apply_currents(): command the current loops (A), zero = free.
-// storage_read/storage_write(): the parameter block in non-volatile memory; false on failure.
+// storage_read/storage_write(offset, ...): n bytes at a byte offset of the non-volatile memory that
+// holds the two calibration slots (calibration_slot.h); a write erases what it covers first (a
+// flash sector per slot) and may be cut by a power loss at any byte. False on failure.
 template <class H>
 concept NodeHardware = requires(H& h, const JointArray& amps, std::uint8_t* dst, const std::uint8_t* src,
-                                std::size_t n) {
+                                std::size_t offset, std::size_t n) {
   { h.sense() } -> std::same_as<HardwareSample>;
   h.apply_currents(amps);
-  { h.storage_read(dst, n) } -> std::same_as<bool>;
-  { h.storage_write(src, n) } -> std::same_as<bool>;
+  { h.storage_read(offset, dst, n) } -> std::same_as<bool>;
+  { h.storage_write(offset, src, n) } -> std::same_as<bool>;
 };
 #define VESICA_NODE_HARDWARE NodeHardware
 #else

@@ -45,6 +45,13 @@ inline constexpr std::uint16_t kJointMin = 0x0060;          // rad (m)
 inline constexpr std::uint16_t kJointMax = 0x0070;          // rad (m)
 inline constexpr std::uint16_t kPositionOffset = 0x0080;    // rad (m), from calibration
 inline constexpr std::uint16_t kCurrentOffset = 0x0090;     // A, from calibration
+// Protocol minor 1: what the calibration tool measures (docs/protocol.md section 11).
+inline constexpr std::uint16_t kEncoderDirection = 0x00A0;  // +1 / -1: sign of counts per joint motion
+inline constexpr std::uint16_t kIndexPosition = 0x00A8;     // rad (m): joint position of the reference index edge
+inline constexpr std::uint16_t kCoulombFriction = 0x00B0;   // N·m (N) at the joint, in the node's torque units
+inline constexpr std::uint16_t kViscousFriction = 0x00B8;   // N·m·s/rad (N·s/m)
+inline constexpr std::uint16_t kGravitySin = 0x00C0;        // N·m: pitch holding torque = sin * sin(pitch) + cos * cos(pitch)
+inline constexpr std::uint16_t kGravityCos = 0x00C1;        // N·m
 inline constexpr std::uint16_t kSerial = 0x0100;
 inline constexpr std::uint16_t kFirmwareVersion = 0x0101;
 inline constexpr std::uint16_t kFaultHistoryCount = 0x0102;
@@ -52,6 +59,13 @@ inline constexpr std::uint16_t kDecodeErrorCount = 0x0103;
 inline constexpr std::uint16_t kLostCommandCount = 0x0104;
 inline constexpr std::uint16_t kFaultHistory = 0x0110;      // 0x0110..0x0117, newest first
 inline constexpr std::uint8_t kFaultHistoryDepth = 8;
+// Calibration slots (protocol minor 1). Date and tool version are written by the tool before a
+// save and go into the slot header; after boot they are the booted slot's.
+inline constexpr std::uint16_t kCalibrationDate_s = 0x0120;      // Unix time
+inline constexpr std::uint16_t kCalibrationToolVersion = 0x0121; // major << 16 | minor << 8 | patch
+inline constexpr std::uint16_t kActiveSlot = 0x0122;             // 0 A, 1 B, 255 none (defaults)
+inline constexpr std::uint16_t kSlotStatus = 0x0123;             // 0x0123 A, 0x0124 B: StorageResult
+inline constexpr std::uint16_t kSlotGeneration = 0x0125;         // 0x0125 A, 0x0126 B
 }  // namespace param
 
 #define VESICA_J3(base, name, unit, lo, hi, def0, def1, def2)                                  \
@@ -78,6 +92,14 @@ inline constexpr ParameterSpec kParameterSpecs[] = {
   VESICA_J3(param::kJointMax, "joint_max", "rad (m)", -3.1416, 3.1416, 1.0, 1.0, 0.25),
   VESICA_J3(param::kPositionOffset, "position_offset", "rad (m)", -10, 10, 0, 0, 0),
   VESICA_J3(param::kCurrentOffset, "current_offset", "A", -5, 5, 0, 0, 0),
+  {param::kEncoderDirection + 0, "encoder_direction[yaw]", ParameterType::I32, "", -1, 1, 1, ParameterAccess::ReadWrite, true},
+  {param::kEncoderDirection + 1, "encoder_direction[pitch]", ParameterType::I32, "", -1, 1, 1, ParameterAccess::ReadWrite, true},
+  {param::kEncoderDirection + 2, "encoder_direction[insertion]", ParameterType::I32, "", -1, 1, 1, ParameterAccess::ReadWrite, true},
+  VESICA_J3(param::kIndexPosition, "index_position", "rad (m)", -10, 10, 0, 0, 0),
+  VESICA_J3(param::kCoulombFriction, "coulomb_friction", "N·m (N)", 0, 100, 0, 0, 0),
+  VESICA_J3(param::kViscousFriction, "viscous_friction", "N·m·s/rad (N·s/m)", 0, 1000, 0, 0, 0),
+  {param::kGravitySin, "gravity_sin[pitch]", ParameterType::F32, "N·m", -100, 100, 0, ParameterAccess::ReadWrite, true},
+  {param::kGravityCos, "gravity_cos[pitch]", ParameterType::F32, "N·m", -100, 100, 0, ParameterAccess::ReadWrite, true},
   {param::kSerial, "serial", ParameterType::U32, "", 0, 4294967295.0, 0, ParameterAccess::ReadOnly, false},
   {param::kFirmwareVersion, "firmware_version", ParameterType::U32, "", 0, 4294967295.0, 0x00010000, ParameterAccess::ReadOnly, false},
   {param::kFaultHistoryCount, "fault_history_count", ParameterType::U32, "", 0, 4294967295.0, 0, ParameterAccess::ReadOnly, true},
@@ -91,6 +113,13 @@ inline constexpr ParameterSpec kParameterSpecs[] = {
   {param::kFaultHistory + 5, "fault_history[5]", ParameterType::U32, "", 0, 4294967295.0, 0, ParameterAccess::ReadOnly, true},
   {param::kFaultHistory + 6, "fault_history[6]", ParameterType::U32, "", 0, 4294967295.0, 0, ParameterAccess::ReadOnly, true},
   {param::kFaultHistory + 7, "fault_history[7]", ParameterType::U32, "", 0, 4294967295.0, 0, ParameterAccess::ReadOnly, true},
+  {param::kCalibrationDate_s, "calibration_date_s", ParameterType::U32, "s", 0, 4294967295.0, 0, ParameterAccess::ReadWrite, false},
+  {param::kCalibrationToolVersion, "calibration_tool_version", ParameterType::U32, "", 0, 4294967295.0, 0, ParameterAccess::ReadWrite, false},
+  {param::kActiveSlot, "active_slot", ParameterType::U32, "", 0, 255, 255, ParameterAccess::ReadOnly, false},
+  {param::kSlotStatus + 0, "slot_status[A]", ParameterType::U32, "", 0, 4, 1, ParameterAccess::ReadOnly, false},
+  {param::kSlotStatus + 1, "slot_status[B]", ParameterType::U32, "", 0, 4, 1, ParameterAccess::ReadOnly, false},
+  {param::kSlotGeneration + 0, "slot_generation[A]", ParameterType::U32, "", 0, 4294967295.0, 0, ParameterAccess::ReadOnly, false},
+  {param::kSlotGeneration + 1, "slot_generation[B]", ParameterType::U32, "", 0, 4294967295.0, 0, ParameterAccess::ReadOnly, false},
 };
 #undef VESICA_J3
 

@@ -14,19 +14,20 @@ struct FakeNodeHardware {
   HardwareSample sample;
   JointArray applied{};
   int apply_calls = 0;
-  std::vector<std::uint8_t> storage;  // empty: blank flash
+  std::vector<std::uint8_t> storage;  // empty: blank flash; offset 0 = slot A
   bool storage_write_fails = false;
 
   HardwareSample sense() { return sample; }
   void apply_currents(const JointArray& amps) { applied = amps; ++apply_calls; }
-  bool storage_read(std::uint8_t* dst, std::size_t n) {
-    if (storage.size() < n) return false;
-    std::memcpy(dst, storage.data(), n);
+  bool storage_read(std::size_t offset, std::uint8_t* dst, std::size_t n) {
+    if (storage.size() < offset + n) return false;
+    std::memcpy(dst, storage.data() + offset, n);
     return true;
   }
-  bool storage_write(const std::uint8_t* src, std::size_t n) {
+  bool storage_write(std::size_t offset, const std::uint8_t* src, std::size_t n) {
     if (storage_write_fails) return false;
-    storage.assign(src, src + n);
+    if (storage.size() < offset + n) storage.resize(offset + n, 0xFF);  // erased flash reads 0xFF
+    std::memcpy(storage.data() + offset, src, n);
     return true;
   }
 };

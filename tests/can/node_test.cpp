@@ -319,7 +319,7 @@ TEST_F(NodeTest, ParameterChannelAbortsWithCanopenCodes) {
 TEST_F(NodeTest, SavedParametersSurviveRebootAndCorruptionLatchesFault) {
   EXPECT_FALSE(parameter(ParameterOp::Write, param::kWatchdogTimeout_us, ParameterType::U32, 4500).aborted);
   EXPECT_FALSE(parameter(ParameterOp::Save, 0).aborted);
-  ASSERT_EQ(hw.storage.size(), ParameterStore::kImageSize);
+  ASSERT_EQ(hw.storage.size(), slot::kSize);  // the first save goes to slot A
   Node<FakeNodeHardware> rebooted(hw, 0xABCD);
   rebooted.boot(0);
   EXPECT_EQ(rebooted.parameters().u32(param::kWatchdogTimeout_us), 4500u);

@@ -18,8 +18,8 @@ struct FuzzHardware {
   JointArray applied{};
   HardwareSample sense() { return sample; }
   void apply_currents(const JointArray& a) { applied = a; }
-  bool storage_read(std::uint8_t*, std::size_t) { return false; }
-  bool storage_write(const std::uint8_t*, std::size_t) { return true; }
+  bool storage_read(std::size_t, std::uint8_t*, std::size_t) { return false; }
+  bool storage_write(std::size_t, const std::uint8_t*, std::size_t) { return true; }
 };
 
 void check(bool ok) {
