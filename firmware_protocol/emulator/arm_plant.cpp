@@ -88,6 +88,7 @@ void ArmPlant::Step(double dt) {
     effort[j] += motors_[m].joint_effort() - motors_[m].reflected_viscous() * qd_[j];
     coulomb[j] = motors_[m].reflected_coulomb();
   }
+  effort[1] += p_.pitch_gravity_sin_Nm * std::sin(q_[1]) + p_.pitch_gravity_cos_Nm * std::cos(q_[1]);
   effort[2] -= p_.roll_viscous_Nm_s_per_rad * qd_[2];
   coulomb[2] = p_.roll_coulomb_Nm;
 

@@ -32,6 +32,11 @@ struct ArmPlantParameters {
   double linear_stop_stiffness_N_per_m = 2e4;
   double linear_stop_damping_N_s_per_m = 60.0;
 
+  /// Residual imbalance of the pitch link: gravity's torque on pitch is
+  /// sin * sin(pitch) + cos * cos(pitch), N m (zero: balanced, as the nominal arm).
+  double pitch_gravity_sin_Nm = 0.0;
+  double pitch_gravity_cos_Nm = 0.0;
+
   double roll_sensor_offset_rad = 0.0;      ///< absolute magnetic sensor mounting offset
   double roll_sensor_lsb_rad = 3.835e-4;    ///< 14 bits per turn
   double jaw_sensor_lsb_rad = 1e-3;         ///< Hall handle sensor resolution

@@ -1,0 +1,89 @@
+#include "firmware_protocol/emulator/arm_ground_truth.h"
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace vesica::fp::emulator {
+namespace {
+
+// Uniform draw written out (std::uniform_real_distribution differs between standard libraries,
+// and a seed must give the same arm everywhere).
+double Uniform(std::mt19937_64& rng, double lo, double hi) {
+  const double u = static_cast<double>(rng() >> 11) * (1.0 / 9007199254740992.0);  // [0, 1)
+  return lo + (hi - lo) * u;
+}
+
+}  // namespace
+
+double ArmGroundTruth::coulomb(int j) const { return plant.motor[j].transmission_ratio * plant.motor[j].coulomb_friction_Nm; }
+
+double ArmGroundTruth::viscous(int j) const {
+  const double n = plant.motor[j].transmission_ratio;
+  return n * n * plant.motor[j].viscous_friction_Nm_s_per_rad;
+}
+
+double ArmGroundTruth::index_spacing(int j) const { return 2.0 * std::numbers::pi / plant.motor[j].transmission_ratio; }
+
+double ArmGroundTruth::count(int j) const {
+  return 2.0 * std::numbers::pi / plant.encoder[j].counts_per_rev / plant.motor[j].transmission_ratio;
+}
+
+double ArmGroundTruth::reference_index(int j) const {
+  // Index edges sit at motor angle index_angle + 2 pi k, i.e. joint position (index + 2 pi k) / N.
+  const double n = plant.motor[j].transmission_ratio;
+  const double spacing = index_spacing(j);
+  const double first = plant.encoder[j].index_angle_rad / n;
+  const double k = std::round((kDesignCentre[j] - first) / spacing);
+  return first + k * spacing;
+}
+
+double ArmGroundTruth::lower_stop(int j) const { return plant.lower_limit[JointOfMotor(j)]; }
+double ArmGroundTruth::upper_stop(int j) const { return plant.upper_limit[JointOfMotor(j)]; }
+
+double ArmGroundTruth::torque_constant_ratio(int j, double nominal_Nm_per_A) const {
+  return plant.motor[j].torque_constant_Nm_per_A / nominal_Nm_per_A;
+}
+
+ArmGroundTruth RandomArm(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  ArmGroundTruth t;
+  t.seed = seed;
+  ArmPlantParameters& p = t.plant;
+  p = ArmPlantParameters::Nominal();
+  for (int m = 0; m < 3; ++m) {
+    DcMotorParameters& motor = p.motor[m];
+    const double n = motor.transmission_ratio;
+    // Torque constant within +-5 % of the datasheet (the node's parameter).
+    motor.torque_constant_Nm_per_A *= Uniform(rng, 0.95, 1.05);
+    // Friction at the joint: gears and seals of a back-drivable haptic arm.
+    const bool rotary = m < 2;
+    const double coulomb = rotary ? Uniform(rng, 4e-3, 12e-3) : Uniform(rng, 0.2, 0.6);  // N m or N
+    const double viscous = rotary ? Uniform(rng, 2e-3, 6e-3) : Uniform(rng, 0.5, 1.5);   // N m s/rad or N s/m
+    motor.coulomb_friction_Nm = coulomb / n;
+    motor.viscous_friction_Nm_s_per_rad = viscous / (n * n);
+    p.current_sensor_offset_A[m] = Uniform(rng, -0.05, 0.05);
+    p.encoder[m].direction = rng() % 2 == 0 ? 1 : -1;
+    p.encoder[m].index_angle_rad = Uniform(rng, 0.0, 2.0 * std::numbers::pi);
+    // Stops symmetric about the design centre; span +-5 % (rotary) or +-5 mm (insertion).
+    const int joint = JointOfMotor(m);
+    const double half = rotary ? Uniform(rng, 1.0, 1.1) : Uniform(rng, 0.110, 0.120);
+    p.lower_limit[joint] = ArmGroundTruth::kDesignCentre[m] - half;
+    p.upper_limit[joint] = ArmGroundTruth::kDesignCentre[m] + half;
+  }
+  // Machined stops are stiff.
+  p.rotary_stop_stiffness_Nm_per_rad = 2000.0;
+  p.rotary_stop_damping_Nm_s_per_rad = 3.0;
+  p.linear_stop_stiffness_N_per_m = 2e5;
+  p.linear_stop_damping_N_s_per_m = 200.0;
+  // Pitch imbalance: amplitude 20..50 mN m, its angle within +-0.3 rad of upright.
+  const double g = Uniform(rng, 0.02, 0.05);
+  const double phase = Uniform(rng, -0.3, 0.3);
+  p.pitch_gravity_sin_Nm = g * std::cos(phase);
+  p.pitch_gravity_cos_Nm = -g * std::sin(phase);
+  // Where the arm was at power-up (the board assumes it parked).
+  t.power_up = {Uniform(rng, -0.5, 0.5), Uniform(rng, -0.5, 0.5), 0.0, Uniform(rng, 0.08, 0.2)};
+  return t;
+}
+
+}  // namespace vesica::fp::emulator

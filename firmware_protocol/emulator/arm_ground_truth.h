@@ -1,0 +1,42 @@
+#pragma once
+
+#include <cstdint>
+
+#include "firmware_protocol/emulator/arm_plant.h"
+
+namespace vesica::fp::emulator {
+
+/// One randomised arm, as built and assembled: what a calibration has to find, drawn from a seed
+/// so a failing arm can be rebuilt. Joint order for 3-vectors: yaw, pitch, insertion.
+///
+/// The arm's joint coordinates are defined by its mechanics: each joint's hard stops are machined
+/// symmetric about the joint's design centre (kDesignCentre: 0 rad, 0 rad, 0.135 m), their span
+/// varies from arm to arm. The encoder is incremental, so the board's reading is off by where the
+/// arm happened to be at power-up (`power_up`, the board assumes park_position) and may count
+/// backwards (`encoder[m].direction`); its index sits at a random mounting angle.
+struct ArmGroundTruth {
+  static constexpr double kDesignCentre[3] = {0.0, 0.0, 0.135};
+
+  std::uint64_t seed = 0;
+  ArmPlantParameters plant;  ///< what the emulator runs
+  Joint4 power_up{};         ///< true joint positions at power-up (yaw, pitch, roll, insertion)
+
+  /// Joint-side friction as the motor sees it (N m or N; N m s/rad or N s/m).
+  double coulomb(int joint) const;
+  double viscous(int joint) const;
+  /// Reference index edge: the one nearest the joint's design centre, in joint units.
+  double reference_index(int joint) const;
+  /// Joint-side distance between index edges (one motor revolution), rad or m.
+  double index_spacing(int joint) const;
+  /// One encoder count on the joint side, rad or m.
+  double count(int joint) const;
+  double lower_stop(int joint) const;
+  double upper_stop(int joint) const;
+  /// Torque constant actual / nominal (the node's parameter): what a current really gives.
+  double torque_constant_ratio(int joint, double nominal_Nm_per_A) const;
+};
+
+/// Seeded random arm: ranges and spreads documented in the .cpp next to each draw.
+ArmGroundTruth RandomArm(std::uint64_t seed);
+
+}  // namespace vesica::fp::emulator
