@@ -9,6 +9,7 @@
 #include "firmware_protocol/codec/codec.h"
 #include "firmware_protocol/wireshark/codec_probe.h"
 #include "firmware_protocol/wireshark/field_bits.h"
+#include "firmware_protocol/wireshark/value_names.h"
 
 namespace vesica::fp {
 namespace {
@@ -39,6 +40,18 @@ std::string hex(unsigned v, int digits) {
 // A field is shown in SI units when it has a scale or a unit; counters and enumerations raw.
 bool scaled(const FieldSpec& f) { return f.lsb != 1.0 || *f.unit != '\0'; }
 
+// {[2] = "operational", ...} for an enumerated field, else "nil".
+std::string value_string(const FieldSpec& f) {
+  for (const FieldValueNames& v : field_value_names()) {
+    if (v.field != &f) continue;
+    std::string out = "{";
+    for (std::size_t i = 0; i < v.names.size(); ++i)
+      out += (i ? ", [" : "[") + std::to_string(v.names[i].first) + "] = " + lua_string(v.names[i].second.c_str());
+    return out + "}";
+  }
+  return "nil";
+}
+
 void write_field(std::ostream& o, const MessageSpec& m, const FieldSpec& f, const CodecProbe& probe) {
   const std::string abbrev = std::string("vesica.") + m.name + "." + f.name;
   const char* int_type = is_signed(f.type) ? "int32" : "uint32";
@@ -58,7 +71,9 @@ void write_field(std::ostream& o, const MessageSpec& m, const FieldSpec& f, cons
       << "       pf_raw = ProtoField." << int_type << "(" << lua_string((abbrev + ".raw").c_str()) << ", "
       << lua_string((std::string(f.name) + " raw").c_str()) << ")},\n";
   } else {
-    o << "       pf = ProtoField." << int_type << "(" << lua_string(abbrev.c_str()) << ", " << lua_string(f.name) << ")},\n";
+    const std::string names = value_string(f);
+    o << "       pf = ProtoField." << int_type << "(" << lua_string(abbrev.c_str()) << ", " << lua_string(f.name)
+      << (names == "nil" ? std::string() : ", base.DEC, " + names) << ")},\n";
   }
 }
 
@@ -192,8 +207,9 @@ function vesica.dissector(tvb, pinfo, tree)
     end
     if raw < f.raw_min or raw > f.raw_max or (f.valid and not f.valid[raw]) then
       bad = bad or f.name
-      mark(root, item, "out_of_range", m.name .. "." .. f.name,
-           string.format("%s = %d is not a valid value (raw %d..%d)", f.name, raw, f.raw_min, f.raw_max))
+      local why = (raw < f.raw_min or raw > f.raw_max) and string.format("is outside %d..%d", f.raw_min, f.raw_max)
+                  or "is not one of its values"
+      mark(root, item, "out_of_range", m.name .. "." .. f.name, string.format("%s = %d %s", f.name, raw, why))
     end
   end
   for _, r in ipairs(m.reserved) do

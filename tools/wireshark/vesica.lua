@@ -12,7 +12,7 @@ local messages = {
     fields = {
       {name = "command", offset = 0, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 1, raw_max = 130,
        valid = {[1] = true, [2] = true, [128] = true, [129] = true, [130] = true},
-       pf = ProtoField.uint32("vesica.Nmt.command", "command")},
+       pf = ProtoField.uint32("vesica.Nmt.command", "command", base.DEC, {[1] = "start", [2] = "stop", [128] = "enter_pre_operational", [129] = "reset_node", [130] = "reset_communication"})},
       {name = "target_node", offset = 1, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 127,
        pf = ProtoField.uint32("vesica.Nmt.target_node", "target_node")},
     },
@@ -41,7 +41,7 @@ local messages = {
       {name = "error_register", offset = 2, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 255,
        pf = ProtoField.uint32("vesica.Emergency.error_register", "error_register")},
       {name = "fault", offset = 3, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 10,
-       pf = ProtoField.uint32("vesica.Emergency.fault", "fault")},
+       pf = ProtoField.uint32("vesica.Emergency.fault", "fault", base.DEC, {[0] = "none", [1] = "command_watchdog", [2] = "emergency_stop", [3] = "over_current", [4] = "over_speed", [5] = "joint_range_exceeded", [6] = "parameter_crc", [7] = "under_voltage", [8] = "over_voltage", [9] = "over_temperature", [10] = "protocol_mismatch"})},
       {name = "joint", offset = 4, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 255,
        pf = ProtoField.uint32("vesica.Emergency.joint", "joint")},
       {name = "history_count", offset = 5, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 255,
@@ -56,11 +56,11 @@ local messages = {
       {name = "counter", offset = 0, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 255,
        pf = ProtoField.uint32("vesica.JointState.counter", "counter")},
       {name = "state", offset = 1, size = 1, signed = false, bit_offset = 0, bit_width = 3, lsb = 1, unit = "", raw_min = 0, raw_max = 4,
-       pf = ProtoField.uint32("vesica.JointState.state", "state")},
+       pf = ProtoField.uint32("vesica.JointState.state", "state", base.DEC, {[0] = "boot", [1] = "pre-operational", [2] = "operational", [3] = "stopped", [4] = "fault"})},
       {name = "enabled", offset = 1, size = 1, signed = false, bit_offset = 3, bit_width = 1, lsb = 1, unit = "", raw_min = 0, raw_max = 1,
        pf = ProtoField.uint32("vesica.JointState.enabled", "enabled")},
       {name = "limiter", offset = 1, size = 1, signed = false, bit_offset = 4, bit_width = 4, lsb = 1, unit = "", raw_min = 0, raw_max = 6,
-       pf = ProtoField.uint32("vesica.JointState.limiter", "limiter")},
+       pf = ProtoField.uint32("vesica.JointState.limiter", "limiter", base.DEC, {[0] = "none", [1] = "current", [2] = "torque", [3] = "velocity", [4] = "joint_range", [5] = "disabled", [6] = "fault"})},
       {name = "yaw", offset = 2, size = 2, signed = true, bit_offset = 0, bit_width = 0, lsb = 0.0001, unit = "rad", raw_min = -31416, raw_max = 31416,
        pf = ProtoField.double("vesica.JointState.yaw", "yaw (rad)"),
        pf_raw = ProtoField.int32("vesica.JointState.yaw.raw", "yaw raw")},
@@ -78,7 +78,7 @@ local messages = {
       {name = "counter", offset = 0, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 255,
        pf = ProtoField.uint32("vesica.CurrentCommand.counter", "counter")},
       {name = "mode", offset = 1, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 1,
-       pf = ProtoField.uint32("vesica.CurrentCommand.mode", "mode")},
+       pf = ProtoField.uint32("vesica.CurrentCommand.mode", "mode", base.DEC, {[0] = "motor_current", [1] = "joint_torque"})},
       {name = "yaw", offset = 2, size = 2, signed = true, bit_offset = 0, bit_width = 0, lsb = 0.001, unit = "A or N·m", raw_min = -30000, raw_max = 30000,
        pf = ProtoField.double("vesica.CurrentCommand.yaw", "yaw (A or N·m)"),
        pf_raw = ProtoField.int32("vesica.CurrentCommand.yaw.raw", "yaw raw")},
@@ -116,7 +116,7 @@ local messages = {
   {name = "Control", base_id = 0x300, per_node = true, length = 2, purpose = "enable, disable, fault reset",
     fields = {
       {name = "command", offset = 0, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 1, raw_max = 3,
-       pf = ProtoField.uint32("vesica.Control.command", "command")},
+       pf = ProtoField.uint32("vesica.Control.command", "command", base.DEC, {[1] = "enable", [2] = "disable", [3] = "fault_reset"})},
       {name = "counter", offset = 1, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 255,
        pf = ProtoField.uint32("vesica.Control.counter", "counter")},
     },
@@ -144,7 +144,7 @@ local messages = {
   {name = "CalibrationCommand", base_id = 0x400, per_node = true, length = 4, purpose = "start or abort a calibration procedure",
     fields = {
       {name = "procedure", offset = 0, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 3,
-       pf = ProtoField.uint32("vesica.CalibrationCommand.procedure", "procedure")},
+       pf = ProtoField.uint32("vesica.CalibrationCommand.procedure", "procedure", base.DEC, {[0] = "abort", [1] = "find_index", [2] = "current_offset", [3] = "session"})},
       {name = "joint_mask", offset = 1, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 7,
        pf = ProtoField.uint32("vesica.CalibrationCommand.joint_mask", "joint_mask")},
       {name = "max_current", offset = 2, size = 2, signed = false, bit_offset = 0, bit_width = 0, lsb = 0.001, unit = "A", raw_min = 0, raw_max = 30000,
@@ -156,9 +156,9 @@ local messages = {
   {name = "CalibrationProgress", base_id = 0x480, per_node = true, length = 8, purpose = "calibration progress and result",
     fields = {
       {name = "procedure", offset = 0, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 3,
-       pf = ProtoField.uint32("vesica.CalibrationProgress.procedure", "procedure")},
+       pf = ProtoField.uint32("vesica.CalibrationProgress.procedure", "procedure", base.DEC, {[0] = "abort", [1] = "find_index", [2] = "current_offset", [3] = "session"})},
       {name = "status", offset = 1, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 4,
-       pf = ProtoField.uint32("vesica.CalibrationProgress.status", "status")},
+       pf = ProtoField.uint32("vesica.CalibrationProgress.status", "status", base.DEC, {[0] = "idle", [1] = "running", [2] = "done", [3] = "failed", [4] = "aborted"})},
       {name = "percent", offset = 2, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "%", raw_min = 0, raw_max = 100,
        pf = ProtoField.double("vesica.CalibrationProgress.percent", "percent (%)"),
        pf_raw = ProtoField.uint32("vesica.CalibrationProgress.percent.raw", "percent raw")},
@@ -196,9 +196,9 @@ local messages = {
   {name = "ParameterRequest", base_id = 0x600, per_node = true, length = 8, purpose = "typed parameter read/write/save/restore",
     fields = {
       {name = "op", offset = 0, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 1, raw_max = 4,
-       pf = ProtoField.uint32("vesica.ParameterRequest.op", "op")},
+       pf = ProtoField.uint32("vesica.ParameterRequest.op", "op", base.DEC, {[1] = "read", [2] = "write", [3] = "save", [4] = "restore_defaults"})},
       {name = "type", offset = 1, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 3,
-       pf = ProtoField.uint32("vesica.ParameterRequest.type", "type")},
+       pf = ProtoField.uint32("vesica.ParameterRequest.type", "type", base.DEC, {[0] = "none", [1] = "u32", [2] = "i32", [3] = "f32"})},
       {name = "index", offset = 2, size = 2, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 65535,
        pf = ProtoField.uint32("vesica.ParameterRequest.index", "index")},
       {name = "value", offset = 4, size = 4, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 4294967295,
@@ -209,11 +209,11 @@ local messages = {
   {name = "ParameterResponse", base_id = 0x580, per_node = true, length = 8, purpose = "parameter value or abort code",
     fields = {
       {name = "op", offset = 0, size = 1, signed = false, bit_offset = 0, bit_width = 7, lsb = 1, unit = "", raw_min = 1, raw_max = 4,
-       pf = ProtoField.uint32("vesica.ParameterResponse.op", "op")},
+       pf = ProtoField.uint32("vesica.ParameterResponse.op", "op", base.DEC, {[1] = "read", [2] = "write", [3] = "save", [4] = "restore_defaults"})},
       {name = "aborted", offset = 0, size = 1, signed = false, bit_offset = 7, bit_width = 1, lsb = 1, unit = "", raw_min = 0, raw_max = 1,
        pf = ProtoField.uint32("vesica.ParameterResponse.aborted", "aborted")},
       {name = "type", offset = 1, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 3,
-       pf = ProtoField.uint32("vesica.ParameterResponse.type", "type")},
+       pf = ProtoField.uint32("vesica.ParameterResponse.type", "type", base.DEC, {[0] = "none", [1] = "u32", [2] = "i32", [3] = "f32"})},
       {name = "index", offset = 2, size = 2, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 65535,
        pf = ProtoField.uint32("vesica.ParameterResponse.index", "index")},
       {name = "value", offset = 4, size = 4, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 4294967295,
@@ -226,11 +226,11 @@ local messages = {
       {name = "canopen_state", offset = 0, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 127,
        pf = ProtoField.uint32("vesica.Heartbeat.canopen_state", "canopen_state")},
       {name = "state", offset = 1, size = 1, signed = false, bit_offset = 0, bit_width = 3, lsb = 1, unit = "", raw_min = 0, raw_max = 4,
-       pf = ProtoField.uint32("vesica.Heartbeat.state", "state")},
+       pf = ProtoField.uint32("vesica.Heartbeat.state", "state", base.DEC, {[0] = "boot", [1] = "pre-operational", [2] = "operational", [3] = "stopped", [4] = "fault"})},
       {name = "enabled", offset = 1, size = 1, signed = false, bit_offset = 3, bit_width = 1, lsb = 1, unit = "", raw_min = 0, raw_max = 1,
        pf = ProtoField.uint32("vesica.Heartbeat.enabled", "enabled")},
       {name = "latched_fault", offset = 2, size = 1, signed = false, bit_offset = 0, bit_width = 0, lsb = 1, unit = "", raw_min = 0, raw_max = 10,
-       pf = ProtoField.uint32("vesica.Heartbeat.latched_fault", "latched_fault")},
+       pf = ProtoField.uint32("vesica.Heartbeat.latched_fault", "latched_fault", base.DEC, {[0] = "none", [1] = "command_watchdog", [2] = "emergency_stop", [3] = "over_current", [4] = "over_speed", [5] = "joint_range_exceeded", [6] = "parameter_crc", [7] = "under_voltage", [8] = "over_voltage", [9] = "over_temperature", [10] = "protocol_mismatch"})},
     },
     reserved = {{offset = 1, mask = 0xF0}},
   },
@@ -337,8 +337,9 @@ function vesica.dissector(tvb, pinfo, tree)
     end
     if raw < f.raw_min or raw > f.raw_max or (f.valid and not f.valid[raw]) then
       bad = bad or f.name
-      mark(root, item, "out_of_range", m.name .. "." .. f.name,
-           string.format("%s = %d is not a valid value (raw %d..%d)", f.name, raw, f.raw_min, f.raw_max))
+      local why = (raw < f.raw_min or raw > f.raw_max) and string.format("is outside %d..%d", f.raw_min, f.raw_max)
+                  or "is not one of its values"
+      mark(root, item, "out_of_range", m.name .. "." .. f.name, string.format("%s = %d %s", f.name, raw, why))
     end
   end
   for _, r in ipairs(m.reserved) do
