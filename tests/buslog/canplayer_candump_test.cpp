@@ -94,7 +94,7 @@ TEST(CanplayerCandumpTest, OurLogReplaysOntoVcanAndCandumpReadsBackTheSameFrames
     std::mt19937 rng(32);
     long long t_us = 1700000000LL * 1000000;
     for (int i = 0; i < kFrames; ++i) {
-      t_us += 100 + rng() % 400;
+      t_us += 1000 + rng() % 2000;  // canplayer keeps these gaps: about 1.2 s in all
       written.push_back({Nanoseconds{t_us * 1000}, "vcan0", random_frame(rng, i)});
       log.write(written.back());
     }
@@ -102,13 +102,15 @@ TEST(CanplayerCandumpTest, OurLogReplaysOntoVcanAndCandumpReadsBackTheSameFrames
 
   // Both candumps stop after kFrames frames (or 20 s without one, so a lost frame fails rather
   // than hangs); canplayer starts once both have their receive filters on vcan0
-  // (/proc/net/can/rcvlist_all lists one per socket).
+  // (/proc/net/can/rcvlist_all lists one per socket). Their 4 MiB receive buffers (-r; root
+  // inside user-mode Linux may exceed rmem_max) hold the whole replay, so a candump that a loaded
+  // host schedules late still loses nothing (the default buffer dropped 19 of 600 frames).
   const std::string n = std::to_string(kFrames);
   std::ostringstream script;
   script << "set -e\n"
          << "cd " << dump_dir << "\n"
-         << "candump -l -n " << n << " -T 20000 vcan0 &\n"
-         << "candump -L -n " << n << " -T 20000 vcan0 > " << dump_L << " &\n"
+         << "candump -r 4194304 -l -n " << n << " -T 20000 vcan0 &\n"
+         << "candump -r 4194304 -L -n " << n << " -T 20000 vcan0 > " << dump_L << " &\n"
          << "i=0; while [ \"$(grep -c ' vcan0 ' /proc/net/can/rcvlist_all)\" -lt 2 ]; do\n"
          << "  i=$((i+1)); [ $i -lt 1000 ] || { echo 'candump never bound vcan0' >&2; exit 3; }; sleep 0.01; done\n"
          << "canplayer -I " << written_path << "\n"
