@@ -16,7 +16,9 @@ double Uniform(std::mt19937_64& rng, double lo, double hi) {
 
 }  // namespace
 
-double ArmGroundTruth::coulomb(int j) const { return plant.motor[j].transmission_ratio * plant.motor[j].coulomb_friction_Nm; }
+double ArmGroundTruth::coulomb(int j) const {
+  return plant.motor[j].transmission_ratio * plant.motor[j].coulomb_friction_Nm;
+}
 
 double ArmGroundTruth::viscous(int j) const {
   const double n = plant.motor[j].transmission_ratio;

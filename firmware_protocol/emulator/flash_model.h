@@ -26,7 +26,10 @@ class FlashModel {
 
   /// Power is lost after `operations` more byte operations (erase or program).
   void CutPowerAfter(std::size_t operations) { budget_ = operations; }
-  void RestorePower() { budget_ = std::numeric_limits<std::size_t>::max(); powered_ = true; }
+  void RestorePower() {
+    budget_ = std::numeric_limits<std::size_t>::max();
+    powered_ = true;
+  }
   bool powered() const { return powered_; }
   /// Byte operations a Write of n bytes at offset costs (erase of whole sectors + program).
   std::size_t OperationsFor(std::size_t offset, std::size_t n) const;

@@ -75,7 +75,10 @@ inline std::size_t encode_slot(const SlotHeader& h, const std::uint8_t* image, s
 inline SlotCheck check_slot(const std::uint8_t* in, std::size_t n) {
   using namespace slot_detail;
   SlotCheck c;
-  if (n < slot::kSize) { c.status = StorageResult::BadSize; return c; }
+  if (n < slot::kSize) {
+    c.status = StorageResult::BadSize;
+    return c;
+  }
   if (get_u32(in) != slot::kMagic) {
     // Erased flash reads 0xFF; anything else without the magic is a torn or foreign write.
     bool erased = true;
@@ -87,16 +90,26 @@ inline SlotCheck check_slot(const std::uint8_t* in, std::size_t n) {
   const std::uint16_t payload = static_cast<std::uint16_t>(in[6] | (in[7] << 8));
   const std::size_t body = slot::kSize - 4;
   // The CRC first: a torn header must read as corrupt, not as a different version.
-  if (crc32(in, body) != get_u32(in + body)) { c.status = StorageResult::BadCrc; return c; }
-  if (version != slot::kLayoutVersion) { c.status = StorageResult::BadVersion; return c; }
-  if (payload != ParameterStore::kImageSize) { c.status = StorageResult::BadSize; return c; }
+  if (crc32(in, body) != get_u32(in + body)) {
+    c.status = StorageResult::BadCrc;
+    return c;
+  }
+  if (version != slot::kLayoutVersion) {
+    c.status = StorageResult::BadVersion;
+    return c;
+  }
+  if (payload != ParameterStore::kImageSize) {
+    c.status = StorageResult::BadSize;
+    return c;
+  }
   c.header = SlotHeader{get_u32(in + 8), get_u32(in + 12), get_u32(in + 16), get_u32(in + 20)};
   c.status = StorageResult::Ok;
   return c;
 }
 
 // The valid slot with the highest generation, or -1 when neither is valid.
-inline int choose_boot_slot(const StorageResult (&status)[slot::kCount], const std::uint32_t (&generation)[slot::kCount]) {
+inline int choose_boot_slot(const StorageResult (&status)[slot::kCount],
+                            const std::uint32_t (&generation)[slot::kCount]) {
   int best = -1;
   for (int s = 0; s < slot::kCount; ++s) {
     if (status[s] != StorageResult::Ok) continue;

@@ -29,6 +29,7 @@ class Node {
   static constexpr std::uint32_t kCalibrationProgressPeriod_us = 100'000;
   static constexpr std::uint32_t kCurrentOffsetSamples = 200;
   static constexpr std::uint64_t kFindIndexTimeout_us = 10'000'000;
+  static constexpr float kFindIndexCreepFraction = 0.03f;  // of max_velocity: 0.18 rad/s, 30 mm/s
 
   Node(Hw& hw, std::uint32_t serial) : hw_(hw), serial_(serial) {}
 
@@ -79,7 +80,8 @@ class Node {
   bool save_parameters();
   void sync_slot_parameters();
   int encoder_direction(int j) const {
-    return static_cast<std::int32_t>(params_.u32(static_cast<std::uint16_t>(param::kEncoderDirection + j))) < 0 ? -1 : 1;
+    const std::uint32_t raw = params_.u32(static_cast<std::uint16_t>(param::kEncoderDirection + j));
+    return static_cast<std::int32_t>(raw) < 0 ? -1 : 1;
   }
   void sync_fault_parameters();
   static float clampf(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
@@ -402,8 +404,12 @@ JointArray Node<Hw>::calibration_output(const HardwareSample& s, std::uint64_t n
       }
       cal_started_us_ = now_us;
     } else {
-      const float limit = params_.f32(static_cast<std::uint16_t>(param::kMaxCurrent + cal_joint_));
-      out[cal_joint_] = clampf(cal_max_current_, 0, limit);
+      const auto jj = static_cast<std::uint16_t>(cal_joint_);
+      const float limit = params_.f32(static_cast<std::uint16_t>(param::kMaxCurrent + jj));
+      // Creep: no current above the creep speed, so the index is seen where it is, not a
+      // tick's travel later (and a joint at rest against friction still starts).
+      const float creep = kFindIndexCreepFraction * params_.f32(static_cast<std::uint16_t>(param::kMaxVelocity + jj));
+      out[cal_joint_] = s.velocity[cal_joint_] > creep ? 0.0f : clampf(cal_max_current_, 0, limit);
     }
     percent = static_cast<std::uint8_t>(100 * cal_joint_ / kJointCount);
   }
@@ -434,6 +440,15 @@ void Node<Hw>::tick(std::uint64_t now_us) {
   if (cal_status_ == CalibrationStatus::Running && !faulted && nmt_state_ == NodeState::PreOperational) {
     applied_ = calibration_output(s, now_us);
     limiter_ = Limiter::None;
+    if (session_open_ && cal_status_ == CalibrationStatus::Running) {
+      // Inside a session the host keeps serving the joints the procedure does not use (an
+      // unbalanced pitch would fall while yaw looks for its index).
+      const JointArray host = session_output(s);
+      for (int j = 0; j < kJointCount; ++j) {
+        const bool owned = cal_procedure_ == CalibrationProcedure::FindIndex ? j == cal_joint_ : ((cal_mask_ >> j) & 1u) != 0;
+        if (!owned) applied_[j] = host[j];
+      }
+    }
   } else {
     if (cal_status_ == CalibrationStatus::Running) finish_calibration(CalibrationStatus::Aborted, 0);
     applied_ = session_open_ ? session_output(s) : limited_output(s);

@@ -29,7 +29,8 @@ ParameterResponse Ask(Node<FlashBoard>& node, const ParameterRequest& r) {
   CanFrame f;
   EXPECT_EQ(encode(r, f), EncodeError::None);
   CanFrame out;
-  while (node.pop_tx(out)) {}
+  while (node.pop_tx(out)) {
+  }
   node.on_frame(f, 0);
   while (node.pop_tx(out)) {
     Message m;
@@ -44,10 +45,14 @@ std::uint32_t ReadU32(Node<FlashBoard>& node, std::uint16_t index) {
 }
 // One calibration: a position offset, a friction value and the date that identify it.
 bool SaveCalibration(Node<FlashBoard>& node, float offset, std::uint32_t date_s) {
-  EXPECT_FALSE(Ask(node, {1, ParameterOp::Write, ParameterType::F32, param::kPositionOffset, f32_bits(offset)}).aborted);
-  EXPECT_FALSE(Ask(node, {1, ParameterOp::Write, ParameterType::F32, param::kCoulombFriction + 1, f32_bits(offset / 10)}).aborted);
+  EXPECT_FALSE(
+      Ask(node, {1, ParameterOp::Write, ParameterType::F32, param::kPositionOffset, f32_bits(offset)}).aborted);
+  EXPECT_FALSE(
+      Ask(node, {1, ParameterOp::Write, ParameterType::F32, param::kCoulombFriction + 1, f32_bits(offset / 10)})
+          .aborted);
   EXPECT_FALSE(Ask(node, {1, ParameterOp::Write, ParameterType::U32, param::kCalibrationDate_s, date_s}).aborted);
-  EXPECT_FALSE(Ask(node, {1, ParameterOp::Write, ParameterType::U32, param::kCalibrationToolVersion, 0x010200}).aborted);
+  EXPECT_FALSE(
+      Ask(node, {1, ParameterOp::Write, ParameterType::U32, param::kCalibrationToolVersion, 0x010200}).aborted);
   return !Ask(node, {1, ParameterOp::Save, ParameterType::None, 0, 0}).aborted;
 }
 
@@ -169,7 +174,7 @@ TEST(CalibrationStorageTest, BothSlotsCorruptLatchesParameterCrcOnDefaults) {
   ASSERT_TRUE(SaveCalibration(node, 0.1f, 1000));
   ASSERT_TRUE(SaveCalibration(node, 0.2f, 2000));
   std::vector<std::uint8_t> flash = board.flash.bytes();
-  flash[slot::offset(0) + 10] ^= 0x01;  // header (generation)
+  flash[slot::offset(0) + 10] ^= 0x01;               // header (generation)
   flash[slot::offset(1) + slot::kSize - 1] ^= 0x80;  // CRC
   Booted b(flash);
   EXPECT_EQ(b.node.active_slot(), -1);
@@ -207,7 +212,7 @@ TEST(CalibrationStorageTest, FlashModelErasesBeforeProgrammingAndStopsAtTheCut) 
   flash.CutPowerAfter(256 + 2);  // the whole erase and two bytes
   EXPECT_FALSE(flash.Write(10, data, 4));
   EXPECT_EQ(flash.bytes()[11], 0x34);
-  EXPECT_EQ(flash.bytes()[13], 0xFF);   // never programmed
+  EXPECT_EQ(flash.bytes()[13], 0xFF);       // never programmed
   EXPECT_FALSE(flash.Write(300, data, 1));  // no power: nothing happens
   EXPECT_EQ(flash.bytes()[300], 0xFF);
   std::uint8_t out[4];

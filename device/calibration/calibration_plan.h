@@ -1,0 +1,32 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vesica::device::calibration {
+
+/// How a calibration moves the arm: every motion slow and current-limited. Joint order yaw,
+/// pitch, insertion; rotary values in rad, N m; insertion in m, N.
+struct CalibrationPlan {
+  std::uint8_t joints = 0b111;                                 ///< joints to calibrate (bit j)
+  double session_max_current_A = 0.6;                          ///< the node clips every command to this, > 0
+  std::array<double, 3> seek_speed{0.3, 0.3, 0.03};            ///< toward a hard stop
+  std::array<double, 3> seek_torque{0.15, 0.15, 1.2};          ///< pushing on a hard stop, at most
+  std::array<double, 3> move_speed{0.5, 0.5, 0.05};            ///< between measurements
+  std::array<double, 3> find_index_current_A{0.25, 0.3, 0.5};  ///< the node's index creep
+  /// Constant-velocity sweeps, both directions each.
+  std::array<std::vector<double>, 3> friction_speeds{{{0.3, 0.6, 1.2}, {0.3, 0.6, 1.2}, {0.03, 0.06, 0.12}}};
+  std::array<double, 3> sweep_margin{0.25, 0.25, 0.03};   ///< sweeps keep this far from the stops
+  std::array<double, 3> range_margin{0.02, 0.02, 0.002};  ///< soft limits inside the stops
+  int gravity_angles = 5;                                 ///< static holds of pitch, >= 2
+  double gravity_ramp_A_per_s = 0.05;                     ///< current ramp that breaks a hold loose
+  std::uint32_t date_s = 0;                               ///< recorded in the stored slot (Unix time)
+  std::uint32_t tool_version = 0x000100;                  ///< major << 16 | minor << 8 | patch
+  /// Step name and fraction done (0..1), called as the calibration goes.
+  std::function<void(const std::string& step, double fraction)> progress;
+};
+
+}  // namespace vesica::device::calibration

@@ -1,0 +1,113 @@
+// Friction: constant-velocity sweeps across the middle of the range, both directions, several
+// speeds; all joints at once. Over a window at constant speed the mean commanded torque is the
+// friction (plus, for pitch, the window's mean gravity: the same both ways).
+#include <algorithm>
+#include <cmath>
+
+#include "device/calibration/calibration_abort.h"
+#include "device/calibration/calibration_step.h"
+#include "device/calibration/friction_fit.h"
+
+namespace vesica::device::calibration {
+namespace {
+
+struct Window {
+  double lo = 0.0, hi = 0.0;  // position window
+  double torque_sum = 0.0;
+  int n = 0;
+  double t0 = 0.0, p0 = 0.0, t1 = 0.0, p1 = 0.0;
+  void Add(double t, double p, double torque) {
+    if (n == 0) {
+      t0 = t;
+      p0 = p;
+    }
+    t1 = t;
+    p1 = p;
+    torque_sum += torque;
+    ++n;
+  }
+};
+
+}  // namespace
+
+void IdentifyFriction(StepContext& ctx) {
+  ctx.Progress("friction", 0.0);
+  JointServo& servo = ctx.servo;
+  const ArmDesign& d = servo.design();
+  std::size_t segments = 0;
+  for (int j = 0; j < 3; ++j)
+    if (ctx.selected(j)) segments = std::max(segments, ctx.plan.friction_speeds[j].size());
+  std::array<double, 3> a{}, b{};
+  for (int j = 0; j < 3; ++j) {
+    if (!ctx.selected(j)) continue;
+    const JointCalibration& r = ctx.result.joint[j];
+    a[j] = r.lower_stop + ctx.plan.sweep_margin[j];
+    b[j] = r.upper_stop - ctx.plan.sweep_margin[j];
+    servo.SetTorqueLimit(j, 0.9 * ctx.plan.session_max_current_A * d.nm_per_A[j]);
+    servo.MoveTo(j, a[j], ctx.plan.move_speed[j]);
+  }
+  auto all_arrived = [&] {
+    for (int j = 0; j < 3; ++j)
+      if (ctx.selected(j) && !servo.arrived(j)) return false;
+    return true;
+  };
+  ctx.RunUntil(all_arrived, 30.0, "friction: joints did not reach the sweep start");
+  for (std::size_t k = 0; k < segments; ++k) {
+    for (int direction : {+1, -1}) {
+      std::array<Window, 3> w;
+      std::array<bool, 3> active{};
+      for (int j = 0; j < 3; ++j) {
+        if (!ctx.selected(j) || k >= ctx.plan.friction_speeds[j].size()) continue;
+        active[j] = true;
+        const double length = b[j] - a[j];
+        // The middle half of the sweep: the start's transient has died out.
+        w[j].lo = a[j] + 0.25 * length;
+        w[j].hi = b[j] - 0.25 * length;
+        servo.MoveTo(j, direction > 0 ? b[j] : a[j], ctx.plan.friction_speeds[j][k]);
+      }
+      ctx.RunUntil(
+          [&] {
+            bool done = true;
+            for (int j = 0; j < 3; ++j) {
+              if (!active[j]) continue;
+              const double p = ctx.link.sample().position[j];
+              if (!servo.arrived(j) && p >= w[j].lo && p <= w[j].hi)
+                w[j].Add(ctx.link.sample().t_s, p, servo.torque(j));
+              done = done && servo.arrived(j);
+            }
+            return done;
+          },
+          120.0, "friction: a sweep did not finish");
+      ctx.RunFor(0.1);
+      for (int j = 0; j < 3; ++j) {
+        if (!active[j]) continue;
+        if (w[j].n < 20 || w[j].t1 <= w[j].t0)
+          throw CalibrationAbort(AbortReason::kMeasurement,
+                                 "friction: joint " + std::to_string(j) + " sweep too short to measure");
+        FrictionSegment s;
+        s.velocity = (w[j].p1 - w[j].p0) / (w[j].t1 - w[j].t0);
+        s.torque = w[j].torque_sum / w[j].n;
+        ctx.result.joint[j].friction_segments.push_back(s);
+      }
+      ctx.Progress("friction",
+                   static_cast<double>(2 * k + (direction > 0 ? 1 : 2)) / static_cast<double>(2 * segments));
+    }
+  }
+  for (int j = 0; j < 3; ++j) {
+    if (!ctx.selected(j)) continue;
+    JointCalibration& r = ctx.result.joint[j];
+    const FrictionFit fit = FitFriction(r.friction_segments);
+    if (!fit.ok || fit.coulomb < 0 || fit.viscous < 0)
+      throw CalibrationAbort(AbortReason::kMeasurement,
+                             "friction: joint " + std::to_string(j) + " gave no physical fit");
+    r.coulomb = fit.coulomb;
+    r.viscous = fit.viscous;
+    r.friction_offset = fit.offset;
+    r.friction_rms = fit.rms;
+    servo.MoveTo(j, d.centre[j], ctx.plan.move_speed[j]);
+  }
+  ctx.RunUntil(all_arrived, 30.0, "friction: joints did not return to the centre");
+  ctx.Progress("friction", 1.0);
+}
+
+}  // namespace vesica::device::calibration
