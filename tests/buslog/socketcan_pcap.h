@@ -25,7 +25,8 @@ inline void write_socketcan_pcap(const std::filesystem::path& path, const std::v
   le32(227);  // LINKTYPE_CAN_SOCKETCAN
   std::uint32_t seconds = 1700000000;
   for (const CanFrame& f : frames) {
-    const std::uint32_t size = f.fd() ? 72 : 16;
+    const bool fd = f.fd() || f.len > kClassicMaxLength;  // a longer frame can only be CAN FD
+    const std::uint32_t size = fd ? 72 : 16;
     le32(seconds++);
     le32(0);
     le32(size);
@@ -35,7 +36,7 @@ inline void write_socketcan_pcap(const std::filesystem::path& path, const std::v
     if (f.remote()) id |= 0x40000000u;    // CAN_RTR_FLAG
     for (int i = 3; i >= 0; --i) out.put(static_cast<char>(id >> (8 * i)));
     out.put(static_cast<char>(f.len));
-    out.put(static_cast<char>(f.fd() ? 0x04 | (f.brs() ? 0x01 : 0) : 0));  // CANFD_FDF, CANFD_BRS
+    out.put(static_cast<char>(fd ? 0x04 | (f.brs() ? 0x01 : 0) : 0));  // CANFD_FDF, CANFD_BRS
     out.put(0);
     out.put(0);
     for (std::uint32_t i = 0; i < size - 8; ++i) out.put(static_cast<char>(i < f.len ? f.data[i] : 0));
