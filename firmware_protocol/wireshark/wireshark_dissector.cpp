@@ -151,6 +151,7 @@ vesica.fields = all_fields
 vesica.experts = {ex_malformed}
 
 local can_id = Field.new("can.id")
+local can_rtr = Field.new("can.flags.rtr")
 
 local function read_raw(tvb, f)
   local u = 0
@@ -186,6 +187,12 @@ function vesica.dissector(tvb, pinfo, tree)
   local root = tree:add(vesica, tvb(), "Vesica " .. title .. ": " .. m.purpose)
   root:add(f_message, m.name):set_generated()
   root:add(f_node, node):set_generated()
+  local rtr = {can_rtr()}
+  if #rtr > 0 and rtr[#rtr].value then
+    mark(root, root, "remote_frame", nil, "remote (RTR) frames are not part of the protocol")
+    pinfo.cols.info = title .. " [malformed: remote frame]"
+    return tvb:len()
+  end
   if tvb:len() ~= m.length then
     mark(root, root, "wrong_length", nil, string.format("%s is %d bytes, not %d", m.name, tvb:len(), m.length))
     pinfo.cols.info = title .. " [malformed: wrong length]"

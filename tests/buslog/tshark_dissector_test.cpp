@@ -1,6 +1,6 @@
 // tshark with the generated Lua dissector against the codec: 1,000 random valid frames decode to
-// the codec's message, node and field values; frames the codec refuses (wrong length, a field out
-// of range or not an enumerator, reserved bits set, fields that disagree) are marked malformed with
+// the codec's message, node and field values; frames the codec refuses (remote requests, wrong
+// length, a field out of range or not an enumerator, reserved bits set, fields that disagree) are marked malformed with
 // the codec's error name and the field at fault; identifiers outside the plan are left alone.
 // Registered only where CMake found tshark (package tshark, scripts/deps.txt).
 #include <gtest/gtest.h>
@@ -138,8 +138,11 @@ std::int64_t wire_max(const FieldSpec& f) {
 
 std::vector<Malformed> malformed_frames(std::mt19937& rng) {
   std::vector<Malformed> out;
-  for (const MessageSpec& s : kMessageSpecs) {  // each message one byte short and one too long
+  for (const MessageSpec& s : kMessageSpecs) {  // each message as a remote request, one byte short and one too long
     CanFrame f = test::random_valid_frame(s.kind, rng);
+    CanFrame rtr = f;
+    rtr.flags |= CanFrame::kRemote;
+    out.push_back({rtr, DecodeError::RemoteFrame, ""});
     f.len = static_cast<std::uint8_t>(s.length - 1);
     out.push_back({f, DecodeError::WrongLength, ""});
     f.len = static_cast<std::uint8_t>(s.length == 8 ? 0 : s.length + 1);
@@ -246,8 +249,8 @@ TEST_F(TsharkDissectorTest, MalformedFramesAreNamedAsTheCodecRefusesThem) {
       EXPECT_EQ(row.at("vesica.error"), "");
       continue;
     }
-    if (c.codec == DecodeError::WrongLength) {
-      EXPECT_EQ(row.at("vesica.error"), "wrong_length");
+    if (c.codec == DecodeError::WrongLength || c.codec == DecodeError::RemoteFrame) {
+      EXPECT_EQ(row.at("vesica.error"), to_string(c.codec));
       EXPECT_EQ(row.at("vesica.error.field"), "");
       continue;
     }
@@ -278,6 +281,7 @@ TEST_F(TsharkDissectorTest, MalformedFramesAreNamedAsTheCodecRefusesThem) {
   }
   // Every way the codec refuses a frame was exercised.
   EXPECT_GE(counted[DecodeError::WrongLength], 2 * static_cast<int>(kMessageKindCount));
+  EXPECT_EQ(counted[DecodeError::RemoteFrame], static_cast<int>(kMessageKindCount));
   EXPECT_GT(counted[DecodeError::OutOfRange], 0);
   EXPECT_GT(counted[DecodeError::Inconsistent], 0);
   EXPECT_GT(counted[DecodeError::None], 0);
