@@ -286,8 +286,11 @@ void Node<Hw>::handle_parameter(const ParameterRequest& m) {
   switch (m.op) {
     case ParameterOp::Read: abort = params_.read(m.index, r.type, r.raw_value); break;
     case ParameterOp::Write:
-      // Limits never change under torque: writes only while disabled.
-      abort = enabled_ ? AbortCode::WrongState : params_.write(m.index, m.type, m.raw_value);
+      // Limits never change under torque: writes only while disabled. Nor while a fault is
+      // latched: a write sent before the host saw the fault (an E-stop ending a calibration
+      // session, whose reload brought the stored values back) must not land afterwards.
+      abort = enabled_ || faults_.latched() != FaultCode::None ? AbortCode::WrongState
+                                                              : params_.write(m.index, m.type, m.raw_value);
       if (abort == AbortCode::None) r.raw_value = m.raw_value;
       break;
     case ParameterOp::Save: {

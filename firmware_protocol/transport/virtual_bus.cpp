@@ -140,6 +140,9 @@ void VirtualBus::finish(Nanoseconds t) {
   bus_free_at_ = t;
   busy_ += flight_.end - flight_.start;
   VirtualBusEndpoint* sender = flight_.sender;
+  // The sender was unplugged while its frame was on the wire (its queue is gone): the frame is
+  // cut off, nobody receives it.
+  if (sender->tx_.empty()) return;
   if (flight_.corrupted) {
     ++error_frames_;
     sender->tec_ += 8;

@@ -34,6 +34,26 @@ TEST(VirtualBusTest, FrameArrivesAtItsExactEndOfFrameTime) {
   EXPECT_FALSE(a.receive(rx));  // no echo to the sender
 }
 
+TEST(VirtualBusTest, SenderUnpluggedMidFrameLosesTheFrame) {
+  // Was undefined behaviour (the finished frame was popped from the emptied queue): a double
+  // free in the calibration's bus-loss test.
+  VirtualClock clock;
+  VirtualBus bus(clock);
+  auto& a = bus.attach("a");
+  auto& b = bus.attach("b");
+  const CanFrame f = frame(0x181, 8);
+  ASSERT_EQ(a.send(f, 1ms), SendStatus::Queued);
+  bus.run_until(Nanoseconds{1000ll * classic_exact_bits(f) / 2});  // half on the wire
+  a.set_connected(false);
+  bus.run_until(1ms);
+  TimedFrame rx;
+  EXPECT_FALSE(b.receive(rx));
+  EXPECT_EQ(a.stats().tx_frames, 0u);
+  ASSERT_EQ(b.send(frame(0x182, 2), 2ms), SendStatus::Queued);  // the bus goes on
+  bus.run_until(2ms);
+  EXPECT_EQ(b.stats().tx_frames, 1u);
+}
+
 TEST(VirtualBusTest, LowestIdentifierWinsArbitration) {
   VirtualClock clock;
   VirtualBus bus(clock);
