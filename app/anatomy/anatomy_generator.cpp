@@ -22,9 +22,12 @@ void RoundCoordinates(physics::Vertices& vertices, double resolution_m) {
 }
 
 TriangleMesh MakeLiver(const AnatomyOptions& o) {
-  const ImplicitField field = [&](const Eigen::Vector3d& p) { return LiverField(o.liver, o.gallbladder, p); };
-  TriangleMesh liver = DecimateAndSmooth(ExtractIsosurface(field, LiverBounds(o.liver), o.liver_voxel_m),
-                                         {.target_vertices = o.liver_vertices});
+  const ImplicitField field =
+      o.liver_field ? o.liver_field : [&](const Eigen::Vector3d& p) { return LiverField(o.liver, o.gallbladder, p); };
+  const Box bounds = o.liver_field ? o.liver_field_bounds : LiverBounds(o.liver);
+  TriangleMesh liver =
+      DecimateAndSmooth(ExtractIsosurface(field, bounds, o.liver_voxel_m), {.target_vertices = o.liver_vertices});
+  if (o.liver_relaxation_iterations > 0) RelaxOntoField(liver, field, o.liver_relaxation_iterations);
   OrientOutward(liver, field);
   RoundCoordinates(liver.vertices, o.coordinate_resolution_m);
   LabelLiver(liver, o.gallbladder, o.liver_labels);

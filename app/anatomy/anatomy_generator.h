@@ -24,13 +24,20 @@ struct GallbladderResolution {
 
 struct AnatomyOptions {
   LiverShape liver;
+  /// Another liver than `liver`'s wedge (the surgeon's view, surgeon_view_layout.h), sampled over
+  /// `liver_field_bounds`; empty: LiverField(liver, gallbladder) over LiverBounds(liver).
+  ImplicitField liver_field;
+  Box liver_field_bounds{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   GallbladderCentreline gallbladder = DefaultGallbladderCentreline();
   LiverLabelRegions liver_labels;
   AbdominalWallShape wall;
   PortSkinPositions ports;
 
-  double liver_voxel_m = 0.0015;        ///< marching-cubes sampling of the liver
-  int liver_vertices = 1000;            ///< after decimation
+  double liver_voxel_m = 0.0015;  ///< marching-cubes sampling of the liver
+  int liver_vertices = 1000;      ///< after decimation
+  /// Relaxation rounds of the liver onto its field after decimation (0: none, the default's
+  /// liver): vertices back on the exact shape, so a sharp edge is not drawn as a saw.
+  int liver_relaxation_iterations = 0;
   double gallbladder_voxel_m = 0.0007;  ///< fine enough for the 3 mm cystic duct
   std::vector<GallbladderResolution> gallbladder_resolutions{
       {300, 200}, {600, 370}, {1000, 550}, {1600, 800}, {3000, 1300}};

@@ -5,8 +5,12 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "app/scenario/assistant_retraction_config.h"
+#include "app/scenario/patient_position.h"
 
 namespace vesica::app {
 
@@ -88,8 +92,8 @@ struct ContextOrgan {
   enum class Shape { kTube, kEllipsoid };
   std::string name;
   Shape shape = Shape::kTube;
-  std::vector<Eigen::Vector3d> points_m;  ///< tube centreline, >= 2 points
-  double radius_m = 0;                    ///< tube radius
+  std::vector<Eigen::Vector3d> points_m;                  ///< tube centreline, >= 2 points
+  double radius_m = 0;                                    ///< tube radius
   Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();     ///< ellipsoid
   Eigen::Vector3d semi_axes_m = Eigen::Vector3d::Zero();  ///< ellipsoid, along x, y, z
   Eigen::Vector3d rgb = Eigen::Vector3d::Constant(0.8);   ///< colour 0..1
@@ -106,7 +110,9 @@ struct Scenario {
   std::vector<Trocar> trocars;
   LaparoscopeConfig laparoscope;
   std::vector<InstrumentConfig> instruments;
-  std::vector<ContextOrgan> context_organs;  ///< optional [[context_organs]]
+  std::vector<ContextOrgan> context_organs;                       ///< optional [[context_organs]]
+  PatientPosition patient;                                        ///< optional [patient]: gravity on the gallbladder
+  std::optional<AssistantRetractionConfig> assistant_retraction;  ///< optional [assistant_retraction]
 
   const Trocar& trocar(const std::string& name) const;
 };

@@ -356,6 +356,27 @@ Scenario ParseScenario(std::string_view text, const fs::path& source_name, const
       t.RejectUnknownKeys();
       s.context_organs.push_back(std::move(organ));
     }
+  if (top.Has("patient")) {
+    auto t = top.Table("patient");
+    s.patient.given = true;
+    s.patient.reverse_trendelenburg_deg = t.NumberIn("reverse_trendelenburg_deg", -45.0, 45.0, 0.0);
+    s.patient.left_tilt_deg = t.NumberIn("left_tilt_deg", -45.0, 45.0, 0.0);
+    s.patient.gravity_m_per_s2 = t.NumberIn("gravity_m_per_s2", 0.0, 20.0, 9.81);
+    t.RejectUnknownKeys();
+  }
+  if (top.Has("assistant_retraction")) {
+    auto t = top.Table("assistant_retraction");
+    AssistantRetractionConfig r;
+    r.grasp_point_m = t.Vector3("grasp_point_m");
+    r.radius_m = t.NumberIn("radius_m", 0.001, 0.05, 0.01);
+    r.displacement_m = t.Vector3("displacement_m", Eigen::Vector3d::Zero());
+    if (!(r.displacement_m.norm() <= 0.05))
+      t.Fail(t.table().get("displacement_m"), "displacement_m", "must be at most 0.05 m long");
+    r.stiffness_N_per_m = t.Positive("stiffness_N_per_m", 50.0);
+    r.damping_Ns_per_m = t.NonNegative("damping_Ns_per_m", 0.05);
+    t.RejectUnknownKeys();
+    s.assistant_retraction = r;
+  }
   for (auto& t : top.Tables("instruments")) {
     InstrumentConfig in;
     in.name = t.String("name");

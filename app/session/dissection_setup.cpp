@@ -63,6 +63,8 @@ physics::DissectionModelInputs MakeDissectionInputs(const Scenario& scenario, co
   gb.rayleigh_stiffness_s = scenario.gallbladder.rayleigh_stiffness;
   in.settings.springs = {scenario.connective_tissue.stiffness_N_per_m, scenario.connective_tissue.damping_Ns_per_m};
   in.settings.attach_offset_m = scenario.connective_tissue.attach_offset_m;
+  in.settings.gravity_m_per_s2 = GravityInPatientFrame(scenario.patient);  // zero without [patient]
+  if (scenario.assistant_retraction) in.settings.assistant_retraction = ToPhysics(*scenario.assistant_retraction);
   in.instruments[0] = MountOf(scenario, *grasper, physics::InstrumentRole::kGrasper);
   in.instruments[1] = MountOf(scenario, *hook, physics::InstrumentRole::kCauteryHook);
   return in;

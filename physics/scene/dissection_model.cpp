@@ -60,6 +60,7 @@ std::shared_ptr<const DissectionModel> BuildDissectionModel(const DissectionMode
   gb.time_step_s = in.settings.time_step_s;
   model->gallbladder = std::make_shared<const FemModel>(BuildFemModel(in.gallbladder_mesh, gb, {}));
   model->gallbladder_boundary = ExtractBoundary(in.gallbladder_mesh);
+  model->retraction = MakeAssistantRetraction(in.gallbladder_mesh, in.settings.assistant_retraction);
   model->toward_liver = DirectionTowardBed(in.liver_surface, in.gallbladder_mesh);
   ConnectiveTissueSettings tissue;
   tissue.toward_liver = model->toward_liver;

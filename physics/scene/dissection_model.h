@@ -22,6 +22,7 @@ struct DissectionModel {
   std::shared_ptr<const FemModel> gallbladder;
   TetBoundary gallbladder_boundary;  ///< collision, rendering and cautery surface of the gallbladder
   ConnectiveTissue tissue;           ///< springs and membrane as created (all alive)
+  AssistantRetraction retraction;    ///< the fundus's held nodes (empty: no retraction)
   Eigen::Vector3d toward_liver = Eigen::Vector3d::Zero();  ///< unit direction the springs were searched along
 };
 

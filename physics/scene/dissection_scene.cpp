@@ -76,6 +76,7 @@ void DissectionScene::UpdateAttachments(bool in_background) {
       c.segment<3>(3 * node).array() += spring.damping * w;
     }
   }
+  AddRetractionStiffness(model_->retraction, k, c);  // the assistant's hold stays while springs go
   gallbladder_.SetAttachmentStiffness(k, c);
   if (in_background && model_->settings.compliance_adopt_steps > 0) {
     gallbladder_compliance_.BeginAttachments(k, c, gallbladder_.PendingRestFactor());  // one factorisation
@@ -121,6 +122,7 @@ double DissectionScene::Energy() const {
                            s.rest_length;
     springs += 0.5 * model_->settings.springs.stiffness * stretch * stretch;
   }
+  if (!model_->retraction.empty()) springs += RetractionEnergy(model_->retraction, gallbladder_current_.vertices);
   return gallbladder_.KineticEnergy() + gallbladder_.ElasticEnergy() + springs;
 }
 
@@ -192,6 +194,9 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
   // 3. Free motion: the gallbladder's implicit step, the liver's quasi-static response.
   Eigen::VectorXd f_ext = AsStackedVector(spring_forces.gallbladder);
   if (!s.gravity_m_per_s2.isZero()) f_ext += gb_model.GravityForces(s.gravity_m_per_s2);
+  if (!model_->retraction.empty())
+    AddRetractionForces(model_->retraction, gallbladder_current_.vertices, gallbladder_.state().velocity_m_per_s,
+                        f_ext);
   gallbladder_.SetExternalForces(f_ext);
   const StepReport fem = gallbladder_.Step();
   report.gallbladder_accepted = fem.accepted;

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include "physics/grasp/grasp_state_machine.h"
+#include "physics/scene/assistant_retraction.h"
 #include "physics/tissue/spring_forces.h"
 
 namespace vesica::physics {
@@ -24,8 +25,9 @@ struct DissectionSettings {
   /// Gravity on the gallbladder, m/s^2. Zero by default: the paper's scene has none, and in the
   /// patient the omentum and bowel carry the organs' weight.
   Eigen::Vector3d gravity_m_per_s2 = Eigen::Vector3d::Zero();
-  SpringMaterial springs{20.0, 0.05};  ///< connective tissue, per spring (N/m, N s/m)
-  double attach_offset_m = 0.005;      ///< paper §2.4: gallbladder offset toward the liver, > 0
+  SpringMaterial springs{20.0, 0.05};                ///< connective tissue, per spring (N/m, N s/m)
+  AssistantRetractionSettings assistant_retraction;  ///< the fundus held by the assistant; off by default
+  double attach_offset_m = 0.005;                    ///< paper §2.4: gallbladder offset toward the liver, > 0
   GraspSettings grasp;
   double grasp_compliance_m_per_N = 2e-3;  ///< W_soft of grasp rows (eq. 6): jaws and tissue give, >= 0
   /// W_soft of contact rows, > 0: the instrument tip and the tissue's surface layer give a little
