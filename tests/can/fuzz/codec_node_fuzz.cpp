@@ -1,7 +1,8 @@
 // libFuzzer target: arbitrary byte streams as CAN frames into the decoder and the reference node.
 // Input: records [id_hi3 | flags << 3, id_lo, len, data[len <= 8], tick_dt (x 100 us)].
 // Properties (trap on violation): decoded frames re-encode to the same bytes; every frame the node
-// sends decodes; no current flows unless enabled, and never above the node's current limit.
+// sends decodes; no current flows unless enabled (or in a calibration procedure or session), and
+// never above the node's current limit.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -56,8 +57,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     for (int j = 0; j < kJointCount; ++j) {
       check(std::isfinite(hw.applied[j]));
-      if (!node.enabled()) check(hw.applied[j] == 0.0f || node.calibration_status() == CalibrationStatus::Running);
-      check(std::fabs(hw.applied[j]) <= node.parameters().f32(static_cast<std::uint16_t>(param::kMaxCurrent + j)) + 1e-6f);
+      if (!node.enabled())
+        check(hw.applied[j] == 0.0f || node.calibration_status() == CalibrationStatus::Running ||
+              node.calibration_session_open());
+      // The drive's setpoint carries the current-sensor offset; the motor's current is bounded.
+      const float offset =
+          hw.applied[j] == 0.0f ? 0.0f : node.parameters().f32(static_cast<std::uint16_t>(param::kCurrentOffset + j));
+      check(std::fabs(hw.applied[j] - offset) <=
+            node.parameters().f32(static_cast<std::uint16_t>(param::kMaxCurrent + j)) + 1e-6f);
     }
     CanFrame out;
     while (node.pop_tx(out)) {
