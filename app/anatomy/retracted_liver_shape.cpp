@@ -52,6 +52,11 @@ double RetractedLiverField(const RetractedLiverShape& l, const GallbladderCentre
   return SmoothMax(fossa, wedge, l.fossa_blend_m);
 }
 
+Eigen::Vector3d RetractedLiverEdgePoint(const RetractedLiverShape& l, double s_m) {
+  const double bend = (s_m / 0.1) * (s_m / 0.1);
+  return l.frame.At(s_m, l.bow_m * bend, -l.convexity_m * bend);
+}
+
 Box RetractedLiverBounds(const RetractedLiverShape& l) {
   // The corners of the wedge's bounding prism in the surface frame, thickest at the hilum.
   const double thick = (l.hilum_depth_m + 0.02) * std::tan(Radians(std::max(l.right_wedge_deg, l.left_wedge_deg)));

@@ -30,21 +30,21 @@ struct LiverSurfaceFrame {
 
 struct RetractedLiverShape {
   LiverSurfaceFrame frame;
-  double right_extent_m = 0.15;     ///< the right lobe's reach along the edge (s < 0)
-  double left_extent_m = 0.16;      ///< the left lobe's reach (s > 0)
-  double hilum_depth_m = 0.085;     ///< from the edge across the visceral surface to the hilum
+  double right_extent_m = 0.20;     ///< the right lobe's reach along the edge (s < 0)
+  double left_extent_m = 0.20;      ///< the left lobe's reach (s > 0)
+  double hilum_depth_m = 0.095;     ///< from the edge across the visceral surface to the hilum
   double right_wedge_deg = 38;      ///< angle between visceral and diaphragmatic surfaces, right lobe
   double left_wedge_deg = 24;       ///< the same at the left lobe (thinner)
   double left_wedge_from_m = 0.08;  ///< s at which the wedge reaches the left lobe's angle
-  double edge_thickness_m = 0.009;  ///< thickness at the inferior edge (sharp, not a blade)
-  double edge_rounding_m = 0.007;   ///< blend of the edge
+  double edge_thickness_m = 0.012;  ///< thickness at the inferior edge (sharp, not a blade)
+  double edge_rounding_m = 0.010;   ///< blend of the edge
   double hilum_rounding_m = 0.02;   ///< blend where the visceral surface turns at the hilum
   double side_rounding_m = 0.04;    ///< blend of the lobes' ends
   /// The edge and the hilum bow toward the hilum by this at 10 cm either side of the fundus
   /// (the edge's outline curves; the lobes' ends lie lower in the picture).
   double bow_m = 0.012;
   /// The visceral surface is convex: it recedes from the camera by this at 10 cm either side.
-  double convexity_m = 0.02;
+  double convexity_m = 0.01;
   double gallbladder_gap_m = 0.004;  ///< clearance between the fossa and the gallbladder
   double fossa_blend_m = 0.006;      ///< rounding of the fossa's rim
 };
@@ -52,6 +52,10 @@ struct RetractedLiverShape {
 /// Field of the retracted liver (negative inside; about metres near the surface), fossa carved.
 double RetractedLiverField(const RetractedLiverShape& liver, const GallbladderCentreline& gallbladder,
                            const Eigen::Vector3d& p_W);
+
+/// The crest of the inferior edge at s (metres along the edge from the frame's origin): where
+/// the visceral surface, bowed and convex as the field makes it, meets the diaphragmatic one.
+Eigen::Vector3d RetractedLiverEdgePoint(const RetractedLiverShape& liver, double s_m);
 
 /// A box that contains the liver.
 Box RetractedLiverBounds(const RetractedLiverShape& liver);
