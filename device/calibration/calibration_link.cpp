@@ -78,7 +78,8 @@ void CalibrationLink::Handle(const fp::Message& m, fp::Nanoseconds t) {
     for (int j = 0; j < 3; ++j) sample_.current_A[j] = cs->current[j];
   } else if (const auto* hb = std::get_if<fp::Heartbeat>(&m)) {
     node_state_ = hb->state;
-    if (hb->latched_fault != fp::FaultCode::None) node_fault_ = hb->latched_fault;
+    heartbeat_seen_ = true;
+    node_fault_ = hb->latched_fault;
   } else if (const auto* em = std::get_if<fp::Emergency>(&m)) {
     node_fault_ = em->fault;
   } else if (const auto* id = std::get_if<fp::Identity>(&m)) {
@@ -98,11 +99,12 @@ void CalibrationLink::Handle(const fp::Message& m, fp::Nanoseconds t) {
 
 void CalibrationLink::CheckStop() {
   // Order matters for the message: what the node says it did comes before what we only infer.
-  if (node_fault_ == fp::FaultCode::EmergencyStop)
+  // Faults stop a calibration; outside one (info, reading parameters) they are only reported.
+  if (watch_faults_ && node_fault_ == fp::FaultCode::EmergencyStop)
     throw CalibrationAbort(AbortReason::kEmergencyStop,
                            "node " + std::to_string(config_.node_id) +
                                ": emergency stop; the arm is disabled, the stored calibration is in force");
-  if (node_fault_ != fp::FaultCode::None)
+  if (watch_faults_ && node_fault_ != fp::FaultCode::None)
     throw CalibrationAbort(AbortReason::kNodeFault, "node " + std::to_string(config_.node_id) + " latched fault " +
                                                         fp::to_string(node_fault_) +
                                                         "; the arm is disabled, the stored calibration is in force");
@@ -184,8 +186,7 @@ NodeIdentity CalibrationLink::Connect() {
 }
 
 void CalibrationLink::ClearFault() {
-  WaitPeriod();
-  ReceiveAll();
+  AwaitHeartbeat();  // it says whether a fault is latched
   if (node_fault_ == fp::FaultCode::None && node_state_ != fp::NodeState::Fault) return;
   Send(fp::Control{config_.node_id, control_counter_++, fp::ControlCommand::FaultReset});
   node_fault_ = fp::FaultCode::None;
@@ -218,6 +219,12 @@ void CalibrationLink::WriteF32(std::uint16_t index, float value) {
 void CalibrationLink::Save() {
   Ask(fp::ParameterRequest{config_.node_id, fp::ParameterOp::Save, fp::ParameterType::None, 0, 0});
   for (int i = 0; i < 20 && session_open_; ++i) Cycle(last_amps_);  // the session's "done"
+  watch_faults_ = false;
+}
+
+void CalibrationLink::AwaitHeartbeat() {
+  heartbeat_seen_ = false;
+  for (int i = 0; i < 300 && !heartbeat_seen_; ++i) Cycle(last_amps_);
 }
 
 void CalibrationLink::BeginSession(std::uint8_t joint_mask, double max_current_A) {
@@ -240,6 +247,7 @@ void CalibrationLink::BeginSession(std::uint8_t joint_mask, double max_current_A
                            "node " + std::to_string(config_.node_id) +
                                " refused the calibration session (enabled, faulted or not pre-operational)");
   session_open_ = true;
+  watch_faults_ = true;
   last_amps_ = {};
   last_state_ = transport_.now();  // loss is counted from here
 }
@@ -250,6 +258,7 @@ void CalibrationLink::AbortSession() noexcept {
   } catch (...) {
   }
   session_open_ = false;
+  watch_faults_ = false;
   last_amps_ = {};
 }
 

@@ -84,7 +84,10 @@ class CalibrationLink {
 
   void RequestAbort() { abort_requested_ = true; }
   const LinkSample& sample() const { return sample_; }
+  /// The latched fault as last reported (heartbeat, EMCY); None before either was seen.
   fp::FaultCode node_fault() const { return node_fault_; }
+  /// Servo periods until a heartbeat has come (it carries the latched fault), at most 0.3 s.
+  void AwaitHeartbeat();
   double now_s() const;
   std::uint8_t node_id() const { return config_.node_id; }
 
@@ -105,6 +108,8 @@ class CalibrationLink {
   fp::Nanoseconds next_{0};
   fp::Nanoseconds last_state_{-1};
   bool session_open_ = false;
+  bool watch_faults_ = false;  ///< from the session's start to its save: a fault stops everything
+  bool heartbeat_seen_ = false;
   fp::FaultCode node_fault_ = fp::FaultCode::None;
   fp::NodeState node_state_ = fp::NodeState::Boot;
   bool identity_seen_ = false;
