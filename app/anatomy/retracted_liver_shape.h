@@ -30,16 +30,16 @@ struct LiverSurfaceFrame {
 
 struct RetractedLiverShape {
   LiverSurfaceFrame frame;
-  double right_extent_m = 0.20;     ///< the right lobe's reach along the edge (s < 0)
-  double left_extent_m = 0.20;      ///< the left lobe's reach (s > 0)
+  double right_extent_m = 0.13;     ///< the right lobe's reach along the edge (s < 0)
+  double left_extent_m = 0.17;      ///< the left lobe's reach (s > 0)
   double hilum_depth_m = 0.095;     ///< from the edge across the visceral surface to the hilum
-  double right_wedge_deg = 38;      ///< angle between visceral and diaphragmatic surfaces, right lobe
-  double left_wedge_deg = 24;       ///< the same at the left lobe (thinner)
+  double right_wedge_deg = 46;      ///< angle between visceral and diaphragmatic surfaces, right lobe
+  double left_wedge_deg = 30;       ///< the same at the left lobe (thinner)
   double left_wedge_from_m = 0.08;  ///< s at which the wedge reaches the left lobe's angle
   double edge_thickness_m = 0.012;  ///< thickness at the inferior edge (sharp, not a blade)
   double edge_rounding_m = 0.010;   ///< blend of the edge
-  double hilum_rounding_m = 0.02;   ///< blend where the visceral surface turns at the hilum
-  double side_rounding_m = 0.04;    ///< blend of the lobes' ends
+  double hilum_rounding_m = 0.03;   ///< blend where the visceral surface turns at the hilum
+  double side_rounding_m = 0.07;    ///< blend of the lobes' ends
   /// The edge and the hilum bow toward the hilum by this at 10 cm either side of the fundus
   /// (the edge's outline curves; the lobes' ends lie lower in the picture).
   double bow_m = 0.012;
