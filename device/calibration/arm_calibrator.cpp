@@ -25,18 +25,22 @@ CalibrationResult ArmCalibrator::Run() {
     StepContext ctx{link_, servo, plan_, result};
     step = "session";
     link_.BeginSession(plan_.joints, plan_.session_max_current_A);
-    step = "current offset";
-    MeasureCurrentOffsets(ctx);
-    step = "encoder direction";
-    FindEncoderDirections(ctx);
-    step = "range";
-    FindRangeAndZero(ctx);
-    step = "index";
-    FindReferenceIndex(ctx);
-    step = "friction";
-    IdentifyFriction(ctx);
-    step = "gravity";
-    IdentifyGravity(ctx);
+    LoadNodeCalibration(ctx);
+    const struct {
+      std::uint8_t bit;
+      const char* name;
+      void (*run)(StepContext&);
+    } steps[] = {{kStepCurrentOffset, "current offset", MeasureCurrentOffsets},
+                 {kStepEncoderDirection, "encoder direction", FindEncoderDirections},
+                 {kStepRange, "range", FindRangeAndZero},
+                 {kStepIndex, "index", FindReferenceIndex},
+                 {kStepFriction, "friction", IdentifyFriction},
+                 {kStepGravity, "gravity", IdentifyGravity}};
+    for (const auto& s : steps) {
+      if (!(plan_.steps & s.bit)) continue;
+      step = s.name;
+      s.run(ctx);
+    }
     step = "save";
     Commit(result);
   } catch (const CalibrationAbort& e) {

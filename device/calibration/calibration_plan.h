@@ -8,10 +8,24 @@
 
 namespace vesica::device::calibration {
 
+/// The steps of a calibration, in the order they run (bits of CalibrationPlan::steps).
+enum CalibrationStepBit : std::uint8_t {
+  kStepCurrentOffset = 1u << 0,
+  kStepEncoderDirection = 1u << 1,
+  kStepRange = 1u << 2,
+  kStepIndex = 1u << 3,
+  kStepFriction = 1u << 4,
+  kStepGravity = 1u << 5,
+  kAllSteps = 0x3F,
+};
+
 /// How a calibration moves the arm: every motion slow and current-limited. Joint order yaw,
 /// pitch, insertion; rotary values in rad, N m; insertion in m, N.
 struct CalibrationPlan {
-  std::uint8_t joints = 0b111;                                 ///< joints to calibrate (bit j)
+  std::uint8_t joints = 0b111;  ///< joints to calibrate (bit j)
+  /// Steps to run; a step left out keeps what the node has (its stored calibration), and the
+  /// later steps work from that (e.g. friction alone on an arm whose range is calibrated).
+  std::uint8_t steps = kAllSteps;
   double session_max_current_A = 0.6;                          ///< the node clips every command to this, > 0
   std::array<double, 3> seek_speed{0.3, 0.3, 0.03};            ///< toward a hard stop
   std::array<double, 3> seek_torque{0.15, 0.15, 1.2};          ///< pushing on a hard stop, at most

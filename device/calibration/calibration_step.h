@@ -24,6 +24,9 @@ struct StepContext {
   void RunUntil(const std::function<bool()>& done, double timeout_s, const std::string& what);
   /// Servo periods for a while.
   void RunFor(double seconds);
+  /// Every selected joint that is not yet tracking starts holding where it is (a step that
+  /// follows a skipped one finds the joints off).
+  void EngageSelected();
   void Progress(const std::string& step, double fraction) const {
     if (plan.progress) plan.progress(step, fraction);
   }
@@ -32,6 +35,9 @@ struct StepContext {
 // The steps, in the order a calibration runs them (arm_calibrator.cpp). Each leaves the
 // calibrated joints engaged in the servo at rest.
 
+/// What the node runs on now, as a result: the starting point of a calibration that leaves
+/// steps out (stops from joint_min/max and the plan's margin).
+void LoadNodeCalibration(StepContext& ctx);
 /// Current-sensor offsets, motors off (the node's procedure 2).
 void MeasureCurrentOffsets(StepContext& ctx);
 /// Encoder direction per joint: which way the reading goes under a small current.

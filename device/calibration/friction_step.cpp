@@ -33,6 +33,7 @@ struct Window {
 void IdentifyFriction(StepContext& ctx) {
   ctx.Progress("friction", 0.0);
   JointServo& servo = ctx.servo;
+  ctx.EngageSelected();
   const ArmDesign& d = servo.design();
   std::size_t segments = 0;
   for (int j = 0; j < 3; ++j)

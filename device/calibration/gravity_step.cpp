@@ -58,6 +58,7 @@ double Breakaway(StepContext& ctx, double angle, double sign, double& held_at) {
 void IdentifyGravity(StepContext& ctx) {
   if (!ctx.selected(kPitch)) return;
   ctx.Progress("gravity", 0.0);
+  ctx.EngageSelected();
   const JointCalibration& r = ctx.result.joint[kPitch];
   const int n = ctx.plan.gravity_angles < 2 ? 2 : ctx.plan.gravity_angles;
   const double lo = r.lower_stop + 0.15, hi = r.upper_stop - 0.15;

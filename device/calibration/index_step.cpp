@@ -10,6 +10,7 @@ namespace vesica::device::calibration {
 void FindReferenceIndex(StepContext& ctx) {
   ctx.Progress("index", 0.0);
   JointServo& servo = ctx.servo;
+  ctx.EngageSelected();
   const ArmDesign& d = servo.design();
   int done = 0;
   for (int j = 0; j < 3; ++j) {

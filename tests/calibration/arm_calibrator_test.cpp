@@ -87,3 +87,63 @@ INSTANTIATE_TEST_SUITE_P(TwentySeededArms, ArmCalibratorAcceptance, ::testing::R
 
 }  // namespace
 }  // namespace vesica::device::calibration
+
+namespace vesica::device::calibration {
+namespace {
+
+TEST(ArmCalibratorTest, OneJointAloneLeavesTheOthersAsStored) {
+  testing::CalibrationRig rig(11);
+  CalibrationPlan plan;
+  plan.joints = 0b001;  // yaw only
+  const CalibrationResult r = ArmCalibrator(*rig.link, plan).Run();
+  ASSERT_EQ(r.abort, AbortReason::kNone) << r.failed_step << ": " << r.message;
+  const fp::ParameterStore& p = rig.emulator->node().parameters();
+  EXPECT_EQ(r.joint[0].direction, rig.truth.plant.encoder[0].direction);
+  EXPECT_NEAR(r.joint[0].lower_stop, rig.truth.lower_stop(0), 0.5 * kDeg);
+  // Pitch and insertion: untouched defaults, no gravity measured.
+  for (int j : {1, 2}) {
+    const auto jj = static_cast<std::uint16_t>(j);
+    EXPECT_EQ(p.f32(fp::param::kPositionOffset + jj), 0.0f);
+    EXPECT_EQ(p.u32(fp::param::kEncoderDirection + jj), 1u);
+    EXPECT_EQ(p.f32(fp::param::kCoulombFriction + jj), 0.0f);
+    EXPECT_EQ(p.f32(fp::param::kJointMin + jj), fp::find_parameter(fp::param::kJointMin + jj)->default_value);
+  }
+  EXPECT_EQ(p.f32(fp::param::kGravitySin), 0.0f);
+  EXPECT_TRUE(r.gravity_holds.empty());
+}
+
+}  // namespace
+}  // namespace vesica::device::calibration
+
+namespace vesica::device::calibration {
+namespace {
+
+TEST(ArmCalibratorTest, FrictionAloneOnACalibratedArmKeepsTheRest) {
+  testing::CalibrationRig rig(12);
+  ASSERT_EQ(ArmCalibrator(*rig.link, CalibrationPlan{}).Run().abort, AbortReason::kNone);
+  const fp::ParameterStore before = rig.emulator->node().parameters();
+  CalibrationPlan plan;
+  plan.steps = kStepFriction;
+  std::vector<std::string> ran;
+  plan.progress = [&](const std::string& step, double f) {
+    if (f == 0.0) ran.push_back(step);
+  };
+  const CalibrationResult r = ArmCalibrator(*rig.link, plan).Run();
+  ASSERT_EQ(r.abort, AbortReason::kNone) << r.failed_step << ": " << r.message;
+  EXPECT_EQ(ran, (std::vector<std::string>{"friction", "save"}));
+  const fp::ParameterStore& after = rig.emulator->node().parameters();
+  for (int j = 0; j < 3; ++j) {
+    const auto jj = static_cast<std::uint16_t>(j);
+    const double kt = rig.truth.torque_constant_ratio(j, after.f32(fp::param::kTorqueConstant + jj));
+    EXPECT_NEAR(r.joint[j].coulomb, rig.truth.coulomb(j) / kt, 0.1 * rig.truth.coulomb(j) / kt);
+    for (std::uint16_t base : {fp::param::kPositionOffset, fp::param::kEncoderDirection, fp::param::kIndexPosition,
+                               fp::param::kCurrentOffset})
+      EXPECT_EQ(after.u32(base + jj), before.u32(base + jj)) << "parameter 0x" << std::hex << base + jj;
+    EXPECT_NEAR(after.f32(fp::param::kJointMin + jj), before.f32(fp::param::kJointMin + jj), 1e-6);
+  }
+  EXPECT_EQ(after.u32(fp::param::kGravitySin), before.u32(fp::param::kGravitySin));
+  EXPECT_EQ(rig.emulator->node().slot_generation(rig.emulator->node().active_slot()), 2u);  // saved again
+}
+
+}  // namespace
+}  // namespace vesica::device::calibration
