@@ -53,6 +53,10 @@ int main(int argc, char** argv) {
   cli.add_option("--recordings-dir", recordings_dir,
                  "where each session's input is saved ('default' = next to the records database, 'none')")
       ->capture_default_str();
+  cli.add_option("--arms-udp-base-port", options.arms_udp_base_port,
+                 "emulated arms: vesica-armsim node n listens on this port + 2(n-1)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 65535 - 253));
   CLI11_PARSE(cli, argc, argv);
 
   if (headless) {

@@ -30,6 +30,7 @@
 #include "app/scenario/scenario_loader.h"
 #include "app/session/arm_bridge.h"
 #include "app/session/arm_input.h"
+#include "app/session/arms_standing_by.h"
 #include "app/session/dissection_setup.h"
 #include "app/session/session_recording_file.h"
 #include "app/trainer/keyboard_control.h"
@@ -90,7 +91,7 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
   QAction* clear_faults = session->addAction("&Clear arm faults", [this] {
     if (arms_) arms_->ResetFaults();
   });
-  clear_faults->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_F));
+  clear_faults->setShortcut(QKeySequence(QStringLiteral("Ctrl+F")));
   session->addSeparator();
   QAction* quit = session->addAction("&Quit", [this] { close(); });
   quit->setObjectName("quit");
@@ -156,6 +157,18 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
         ro.end_after_s = replay->end_time_s();
         input = replay;
         what = "replaying " + replay_file.string();
+        // At an arm station the arms stay connected while a recording is watched: their state
+        // stays on screen and the next session can take them without binding their ports again.
+        if (ArmBridge::ScenarioUsesArms(scenario_)) {
+          try {
+            if (!arms_) arms_ = OpenArms();
+            ArmBridge* b = arms_.get();
+            ro.haptic_io = std::make_shared<ArmsStandingBy>(b->devices(), [b] { b->Tick(); });
+            what += " (haptic arms connected, not driving)";
+          } catch (const std::exception& e) {
+            what += std::string(" (haptic arms not connected: ") + e.what() + ")";
+          }
+        }
         break;
       }
       case InputChoice::kArms: {
@@ -163,7 +176,7 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
           runner_.reset();
           arms_.reset();
         }
-        auto bridge = std::make_unique<ArmBridge>(scenario_);
+        auto bridge = OpenArms();
         ArmBridge* b = bridge.get();
         auto arms = std::make_shared<ArmInput>(b->devices(), model_->instruments, initial, [b] { b->Tick(); });
         ro.haptic_io = arms;
@@ -193,7 +206,7 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
   runner_ = std::make_unique<SessionRunner>(model_, DefaultCauteryParams(), input, ro);
   input_choice_ = choice;
   session_number_ = 0;
-  if (choice != InputChoice::kArms) arms_.reset();  // after the runner that used it is gone
+  if (choice == InputChoice::kKeyboard) arms_.reset();  // after the runner that used it is gone
   finished_shown_ = stored_ = false;
   stored_id_.reset();
   if (auto* dock = findChild<QDockWidget*>("metrics_dock")) dock->hide();
@@ -202,6 +215,12 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
   statusBar()->showMessage(QString::fromStdString(
       fallback + what + "  |  P pause, R reset, Enter end, +/- zoom, arrows look around, Shift+drag pan, F2 diagnostics"));
   return true;
+}
+
+std::unique_ptr<ArmBridge> TrainerWindow::OpenArms() const {
+  ArmBridgeOptions options;
+  options.udp_base_port = options_.arms_udp_base_port;
+  return std::make_unique<ArmBridge>(scenario_, options);
 }
 
 void TrainerWindow::EndSession() { runner_->End(); }
@@ -276,6 +295,8 @@ void TrainerWindow::ShowError(const std::string& message) {
   last_error_ = message;
   statusBar()->showMessage(QString::fromStdString(message));
 }
+
+std::string TrainerWindow::ArmStatusLines() const { return arms_ ? arms_->StatusLines() : std::string(); }
 
 std::string TrainerWindow::LoopRatesSummary() const {
   const RunnerStatus s = runner_->Status();

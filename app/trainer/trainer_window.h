@@ -35,6 +35,8 @@ struct TrainerOptions {
   std::filesystem::path replay_file;     ///< drive the instruments from this recording
   bool real_time = true;                 ///< false: replay as fast as the physics goes (tests)
   std::string station = "vesica";
+  /// Emulated arms (vesica-armsim over UDP): node n listens on this + 2(n-1) (ArmBridgeOptions).
+  int arms_udp_base_port = 20000;
   SaverOptions saver;                    ///< retries of a locked or unreachable database
 };
 
@@ -83,6 +85,9 @@ class TrainerWindow : public QMainWindow {
   /// The three loops' rates and jitter so far, one line each (the overlay's text; logged at exit
   /// so that a run under Xvfb states the software-rendering rate).
   std::string LoopRatesSummary() const;
+  /// The haptic arms' state, one line per arm ("left arm: ok"), as the surgeon's view shows it;
+  /// empty when no arm is connected.
+  std::string ArmStatusLines() const;
   /// The last error shown (records not writable, physics stopped); empty if none.
   const std::string& last_error() const { return last_error_; }
 
@@ -92,7 +97,8 @@ class TrainerWindow : public QMainWindow {
 
  private:
   void Tick();  // render timer: snapshot -> view, overlay, end-of-session handling
-  RunnerStatus EndAndWait();  // ends the session, waits (bounded) for physics to stop
+  RunnerStatus EndAndWait();
+  std::unique_ptr<ArmBridge> OpenArms() const;  // the scenario's arms; throws why they cannot open  // ends the session, waits (bounded) for physics to stop
   void OnFinished(const RunnerStatus& status, bool unfinished = false);
   void TakeSaveResults();  // the saver's news -> stored_id_, status bar
   void OpenHistory();

@@ -22,21 +22,6 @@ using namespace std::chrono_literals;
 
 Scenario Load(const char* name) { return LoadScenario(std::string(VESICA_SOURCE_DIR "/data/scenarios/") + name); }
 
-/// A base port whose four ports (two arms, two bridge ends) are free right now.
-int FreeBasePort() {
-  for (int tries = 0; tries < 20; ++tries) {
-    const int base = device::testing::FreeUdpPort();
-    if (base == 0 || base + 3 > 65535 - 2 * 126) continue;
-    bool all_free = true;
-    for (int p = base + 1; p <= base + 3; ++p) {
-      std::string error;
-      all_free = all_free && fp::UdpTransport::open({.local_port = static_cast<std::uint16_t>(p)}, error) != nullptr;
-    }
-    if (all_free) return base;
-  }
-  return 0;
-}
-
 /// The haptic thread: ticks the bridge at 1 kHz while alive.
 class TickThread {
  public:
@@ -116,7 +101,7 @@ TEST(ArmBridgeTest, ShippedArmsScenarioIsTheDefaultOneWithArms) {
 // the emulated arms (node 1 grasper, node 2 hook) and says where it waits for them, instead of
 // leaving both instruments without input.
 TEST(ArmBridgeTest, DefaultScenarioGetsTheEmulatedArmsAndSaysWhereItWaits) {
-  const int base = FreeBasePort();
+  const int base = device::testing::FreeArmBasePort();
   ASSERT_NE(base, 0);
   ArmBridgeOptions options;
   options.udp_base_port = base;
@@ -137,7 +122,7 @@ TEST(ArmBridgeTest, DefaultScenarioGetsTheEmulatedArmsAndSaysWhereItWaits) {
 // A port another program holds: an exception naming the instrument, the port and the system's
 // reason, never an arm-less bridge.
 TEST(ArmBridgeTest, LinkThatCannotOpenIsAnErrorNamingThePortAndTheReason) {
-  const int base = FreeBasePort();
+  const int base = device::testing::FreeArmBasePort();
   ASSERT_NE(base, 0);
   std::string error;
   auto squatter = fp::UdpTransport::open({.local_port = static_cast<std::uint16_t>(base + 1)}, error);
@@ -163,7 +148,7 @@ TEST(ArmBridgeTest, LinkThatCannotOpenIsAnErrorNamingThePortAndTheReason) {
 // Both arms connect; the right arm's process is killed ("link lost") and started again: it is
 // "ok" again without reopening the bridge or asking the user.
 TEST(ArmBridgeTest, ArmsimRestartReturnsTheArmToOk) {
-  const int base = FreeBasePort();
+  const int base = device::testing::FreeArmBasePort();
   ASSERT_NE(base, 0);
   ArmBridgeOptions options;
   options.udp_base_port = base;

@@ -24,6 +24,22 @@ inline std::uint16_t FreeUdpPort() {
   return probe ? probe->local_port() : 0;
 }
 
+/// A base port for the arm bridge (ArmBridgeOptions::udp_base_port) whose first two arms' four
+/// ports are all free right now; 0 if none was found.
+inline int FreeArmBasePort() {
+  for (int tries = 0; tries < 20; ++tries) {
+    const int base = FreeUdpPort();
+    if (base == 0 || base + 3 > 65535 - 2 * 126) continue;
+    bool all_free = true;
+    for (int p = base + 1; p <= base + 3; ++p) {
+      std::string error;
+      all_free = all_free && fp::UdpTransport::open({.local_port = static_cast<std::uint16_t>(p)}, error) != nullptr;
+    }
+    if (all_free) return base;
+  }
+  return 0;
+}
+
 class ArmsimProcess {
  public:
   /// Runs `path` with `args`; its stdout goes to a pipe read by Finish().
@@ -44,6 +60,11 @@ class ArmsimProcess {
     close(fds[1]);
     out_fd_ = fds[0];
     return rc == 0;
+  }
+
+  /// Sends `signal` to the child (SIGKILL: the arm's process dies as in a crash).
+  void Kill(int signal) {
+    if (pid_ > 0) kill(pid_, signal);
   }
 
   /// Waits for the child to exit; returns its exit status (-1 if killed) and its stdout.

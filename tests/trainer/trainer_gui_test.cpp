@@ -46,6 +46,8 @@
 #include "app/trainer/trainer_app.h"
 #include "app/trainer/trainer_window.h"
 #include "device/input/input_recording.h"
+#include "firmware_protocol/transport/udp_transport.h"
+#include "tests/device/armsim_process.h"
 
 namespace vesica::app {
 namespace {
@@ -459,6 +461,35 @@ TEST_F(TrainerGuiTest, QuitStoresTheRunningSessionAsUnfinished) {
   EXPECT_TRUE(sessions[0].record.unfinished);
   EXPECT_FALSE(sessions[0].record.replay);
   EXPECT_GT(sessions[0].record.metrics.path_length_left_m, 0.0);
+}
+
+// --- The haptic-arm path -------------------------------------------------------------------------
+
+// The arms scenario on a station where another program holds the left arm's port: the window
+// opens on the keyboard and its status line says why the arms are not driving, naming the port;
+// a recording watched there still plays, and says the arms are not connected.
+TEST_F(TrainerGuiTest, ArmsThatCannotStartAreSaidOnScreenNotASilentKeyboard) {
+  const int base = device::testing::FreeArmBasePort();
+  ASSERT_NE(base, 0);
+  std::string error;
+  auto squatter = fp::UdpTransport::open({.local_port = static_cast<std::uint16_t>(base + 1)}, error);
+  ASSERT_TRUE(squatter) << error;
+  const Scenario arms = LoadScenario(std::filesystem::path(VESICA_SOURCE_DIR) / "data/scenarios/cholecystectomy-arms.toml");
+  TrainerOptions options;
+  options.arms_udp_base_port = base;
+  TrainerWindow w(arms, std::make_unique<LaparoscopeView>(arms, *meshes_), model_, options);
+  w.show();
+  const std::string status = w.statusBar()->currentMessage().toStdString();
+  EXPECT_EQ(status.rfind("Haptic arms could not start: ", 0), 0u) << status;
+  EXPECT_NE(status.find(std::to_string(base + 1)), std::string::npos) << status;
+  EXPECT_NE(status.find("keyboard meanwhile"), std::string::npos) << status;
+  EXPECT_NE(w.last_error().find(std::to_string(base + 1)), std::string::npos) << w.last_error();
+  EXPECT_TRUE(w.ArmStatusLines().empty()) << w.ArmStatusLines();
+
+  ASSERT_TRUE(w.StartSession(TrainerWindow::InputChoice::kReplay, WriteReplayHead(100)));
+  const std::string replay_status = w.statusBar()->currentMessage().toStdString();
+  EXPECT_NE(replay_status.find("haptic arms not connected"), std::string::npos) << replay_status;
+  EXPECT_TRUE(QTest::qWaitFor([&] { return w.session_finished(); }, 60000));
 }
 
 // --- Honest records ------------------------------------------------------------------------------
