@@ -1,5 +1,5 @@
 #pragma once
-// All cautery effects of the scene behind one call per physics step (ARCHITECTURE.md step 3):
+// All cautery effects of the scene behind one call per physics step (docs/architecture.md step 3):
 // burn maps of liver, gallbladder and membrane, damage accounting, membrane removal and smoke.
 // Owns its simulation clock (sum of the contacts' dt), so a replayed input stream gives the
 // same state bit for bit.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Enforces ARCHITECTURE.md's dependency rule on #include lines:
+# Enforces docs/architecture.md's dependency rule on #include lines:
 #   app -> device -> firmware_protocol;  app -> physics, fx;  fx -> physics;  device -> physics
 #   physics, fx, firmware_protocol: no VTK, no Qt, nothing of app or device.
 set -u
@@ -18,5 +18,5 @@ forbid physics "app/|device/|fx/|firmware_protocol/|$gui" "app, device, fx, firm
 forbid fx "app/|device/|firmware_protocol/|$gui" "app, device, firmware_protocol, VTK or Qt"
 forbid firmware_protocol "app/|device/|physics/|fx/|$gui" "app, device, physics, fx, VTK or Qt"
 forbid device "app/|fx/|$gui" "app, fx, VTK or Qt"
-[ $status -eq 0 ] && echo "layering: OK (physics, fx, firmware_protocol, device include only what ARCHITECTURE.md allows)"
+[ $status -eq 0 ] && echo "layering: OK (physics, fx, firmware_protocol, device include only what docs/architecture.md allows)"
 exit $status

@@ -1,6 +1,6 @@
 #pragma once
 // One trainee's dissection: the coupled physics scene, the cautery effects and the metrics,
-// advanced together by one input frame per physics step (ARCHITECTURE.md's step order, then
+// advanced together by one input frame per physics step (docs/architecture.md's "One physics step", then
 // fx). The hook's pedal burns what its tip touches: membrane elements within its radius first
 // (they fade and, once all of a spring's are gone, the spring is cut), else the liver or the
 // gallbladder wall (damage). Deterministic: the same inputs give bit-identical states. While a

@@ -1,5 +1,5 @@
 #pragma once
-// The trainer's three loops (ARCHITECTURE.md "Rates and threads"), without any GUI:
+// The trainer's three loops (docs/architecture.md, "Threads and rates"), without any GUI:
 //   physics thread: samples the input, steps the DissectionSession as fast as it goes (paced to
 //     the wall clock in real-time mode), records the input, publishes render snapshots (at most
 //     every render_period_s) and haptic contact frames;

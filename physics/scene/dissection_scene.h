@@ -1,7 +1,7 @@
 #pragma once
 // The coupled cholecystectomy scene: BEM liver, FEM gallbladder, connective-tissue springs, two
 // instruments colliding by rays, grasping and pushing through Lagrange-multiplier constraints.
-// One Step() reads as ARCHITECTURE.md's "one physics step" (STYLE.md 3):
+// One Step() reads as docs/architecture.md's "One physics step" (STYLE.md 3):
 //   1. instrument poses -> tool points
 //   2. spring forces at the current state (explicit on the stiff liver, implicit stiffness on the
 //      gallbladder through FemBody attachments)

@@ -21,7 +21,7 @@ struct InstrumentMount {
 };
 
 struct DissectionSettings {
-  double time_step_s = 0.005;  ///< physics step h, > 0 (200 Hz: ARCHITECTURE.md's physics rate)
+  double time_step_s = 0.005;  ///< physics step h, > 0 (200 Hz: docs/architecture.md's physics rate)
   /// Gravity on the gallbladder, m/s^2. Zero by default: the paper's scene has none, and in the
   /// patient the omentum and bowel carry the organs' weight.
   Eigen::Vector3d gravity_m_per_s2 = Eigen::Vector3d::Zero();

@@ -1,5 +1,5 @@
 #pragma once
-// What one physics step tells the 1 kHz device loop about one instrument (ARCHITECTURE.md: the
+// What one physics step tells the 1 kHz device loop about one instrument (docs/architecture.md: the
 // haptic loop never waits for physics; between steps it renders force from the last contact
 // frame and its contact-space compliance, as SOFA's LCP force feedback does). Plain data, so it
 // crosses threads through a TripleBuffer.

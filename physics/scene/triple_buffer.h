@@ -1,6 +1,6 @@
 #pragma once
 // Wait-free hand-over of the latest value from one writer thread to one reader thread
-// (ARCHITECTURE.md: loops hand data through snapshots). The writer fills its own slot and swaps
+// (docs/architecture.md: loops hand data through snapshots). The writer fills its own slot and swaps
 // it with the shared middle one; the reader swaps the middle one in only when it is new. Neither
 // side ever blocks or sees a half-written value.
 

@@ -1,4 +1,4 @@
-// The codec and the reference node never touch the heap on the hot path (ARCHITECTURE.md:
+// The codec and the reference node never touch the heap on the hot path (docs/architecture.md:
 // freestanding firmware code). Counts global operator new calls around 1000 control cycles.
 #include <gtest/gtest.h>
 
