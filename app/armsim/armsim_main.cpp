@@ -20,6 +20,7 @@
 #include "app/armsim/hand_trajectory.h"
 #include "device/input/input_recording.h"
 #include "firmware_protocol/emulator/arm_emulator.h"
+#include "firmware_protocol/emulator/arm_ground_truth.h"
 
 namespace {
 
@@ -82,6 +83,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 99));
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error");
   app.add_flag("--report", report, "print the final plant state as one key=value line on stdout");
+  std::uint64_t random_arm = 0;
+  app.add_option("--random-arm", random_arm,
+                 "a seeded random arm (RandomArm: encoder, stops, friction, gravity...) as built, powered up off "
+                 "centre and nobody holding it: what vesica-calibrate must find (0: the nominal arm)");
   CLI11_PARSE(app, argc, argv);
   if (local_port->count() == 0) udp.local_port = 20000 + 2 * (node_id - 1);
   if (remote_port->count() == 0) udp.remote_port = udp.local_port + 1;
@@ -134,12 +139,24 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
 
-  const emu::Joint4 q0{0.0, 0.0, 0.0, depth};
+  emu::Joint4 q0{0.0, 0.0, 0.0, depth};
   emu::ArmEmulator::Config config;
   config.tick_period = std::chrono::microseconds(tick_us);
   config.node_id = static_cast<std::uint8_t>(node_id);
   config.board.park_position = {0.0f, 0.0f, static_cast<float>(depth)};
-  emu::ArmEmulator arm(*transport, emu::ArmPlantParameters::Nominal(), q0, config);
+  emu::ArmPlantParameters plant = emu::ArmPlantParameters::Nominal();
+  if (random_arm != 0) {
+    // As the calibration tests' rig: the board assumes the design centre, the arm is elsewhere.
+    const emu::ArmGroundTruth truth = emu::RandomArm(random_arm);
+    plant = truth.plant;
+    q0 = truth.power_up;
+    config.board.park_position = {0.0f, 0.0f, static_cast<float>(emu::ArmGroundTruth::kDesignCentre[2])};
+    emu::HandTarget let_go;
+    let_go.holding = false;
+    script = emu::HandScript(let_go);
+    hand_text = "of random arm " + std::to_string(random_arm) + " not holding it";
+  }
+  emu::ArmEmulator arm(*transport, plant, q0, config);
   arm.plant().SetHandScript(script);
   spdlog::info("vesica-armsim: node {} listening on UDP {} -> {}:{}, the hand {}", arm.node().node_id(),
                udp.local_port, udp.remote_host, udp.remote_port, hand_text);

@@ -1,0 +1,172 @@
+// calibrate and verify: the arm moves. One prompt before the session opens (the node's watchdog
+// would end a session left waiting for a person), then the steps with progress, then the checks.
+#include <filesystem>
+
+#include "app/calibrate/calibration_report.h"
+#include "app/calibrate/calibration_run.h"
+#include "app/calibrate/commands.h"
+#include "app/calibrate/exit_codes.h"
+#include "app/calibrate/json_views.h"
+#include "app/calibrate/open_arm.h"
+#include "app/calibrate/stored_calibration.h"
+#include "device/calibration/calibration_abort.h"
+
+namespace vesica::app::calibrate {
+
+namespace cal = device::calibration;
+using nlohmann::json;
+
+namespace {
+
+MotionNotice NoticeFor(const OpenedArm& a, const CalibrateRequest& r) {
+  MotionNotice n;
+  n.arm = a.arm;
+  n.arm_text = a.text;
+  n.max_current_A = r.max_current_A;
+  std::string joints;
+  for (int j = 0; j < 3; ++j)
+    if ((r.joints >> j) & 1u) joints += std::string(joints.empty() ? "" : ", ") + JointName(j);
+  for (Step s : r.steps) {
+    const StepInfo& i = InfoOf(s);
+    if (!i.motion) continue;
+    // Gravity holds move pitch only.
+    const std::string which = s == Step::kGravity ? ((r.joints >> 1) & 1u ? "pitch" : "") : joints;
+    if (!which.empty()) n.motions.push_back(std::string(i.name) + ": " + i.motion + " (" + which + ")");
+  }
+  return n;
+}
+
+std::string StoredImageName(const StoredImage& i) {
+  return "serial-" + SerialText(i.header.serial).substr(2) + "-gen-" + std::to_string(i.header.generation) + ".vcal";
+}
+
+// A copy in the session folder and in the archive restore --slot reads.
+bool KeepImage(ToolSession& s, const StoredImage& image, const std::string& name, std::string* path, std::string* error) {
+  std::error_code ec;
+  std::filesystem::create_directories(s.image_archive(), ec);
+  *path = s.session_dir() + "/" + name;
+  return WriteImageFile(*path, image, error) &&
+         WriteImageFile(s.image_archive() + "/" + StoredImageName(image), image, error);
+}
+
+CommandOutcome Measure(ToolSession& s, int arm, const CalibrateRequest& request, bool save) {
+  const char* command = save ? "calibrate" : "verify";
+  OpenedArm a;
+  CommandOutcome failure;
+  if (!OpenArm(s, arm, &a, &failure)) return failure;
+  StoredImage before;
+  try {
+    before = ReadStoredCalibration(*a.link, a.info);
+  } catch (const cal::CalibrationAbort& e) {
+    return AbortOutcome(e, "read", arm);
+  }
+  const CalibrationValues stored = ValuesOf(before.params);
+  if (!save && a.info.active_slot < 0)
+    return ToolSession::Failure(kExitFailed, "arm " + std::to_string(arm) + " has no stored calibration to verify; run "
+                                                 "`vesica-calibrate calibrate " + std::to_string(arm) + "` first",
+                                {{"arm", arm}});
+  // A step alone starts from the stored calibration (range, directions): a blank arm has none.
+  const bool partial = request.steps != AllStepList() && request.steps != std::vector<Step>{Step::kCurrentOffset};
+  if (save && partial && a.info.active_slot < 0)
+    return ToolSession::Failure(kExitFailed, "arm " + std::to_string(arm) + " has no stored calibration for --step " +
+                                                 InfoOf(request.steps.front()).name +
+                                                 " to start from; run a whole calibration first (nothing moved)",
+                                {{"arm", arm}});
+  if (!s.ui().ConfirmMotion(NoticeFor(a, request)))
+    return ToolSession::Failure(kExitAborted, "arm " + std::to_string(arm) + ": not confirmed; nothing moved, nothing "
+                                                   "was written",
+                                {{"arm", arm}});
+  RunRequest run;
+  run.plan.joints = static_cast<std::uint8_t>(request.joints);
+  run.plan.session_max_current_A = request.max_current_A;
+  run.plan.date_s = s.date_s();
+  run.plan.tool_version = kToolVersion;
+  run.plan.progress = [&s, arm](const std::string& step, double f) { s.Progress(arm, step, f); };
+  run.steps = request.steps;
+  run.save = save;
+  const unsigned joints = request.joints;
+  if (save)
+    run.judge = [joints](const cal::CalibrationResult& r, const std::vector<Step>& steps) {
+      return AcceptanceChecks(r, joints, steps);
+    };
+  else
+    run.judge = [joints, stored, margin = run.plan.range_margin](const cal::CalibrationResult& r,
+                                                                 const std::vector<Step>& steps) {
+      return VerifyChecks(r, stored, joints, steps, margin);
+    };
+  s.ui().Note(a.text + ": " + command + " (" + Describe(s.options().bus) + ")");
+  const RunOutcome out = RunCalibration(*a.link, *s.ObserverOf(arm), run);
+  if (out.result.abort != cal::AbortReason::kNone) {
+    CommandOutcome o = AbortOutcome(cal::CalibrationAbort(out.result.abort, out.result.message), out.result.failed_step, arm);
+    o.json["command"] = command;
+    return o;
+  }
+  // The report: measured values, checks, before and after.
+  ReportInput in;
+  in.kind = save ? "calibration" : "verification";
+  in.arm = arm;
+  in.joints = joints;
+  in.info = a.info;
+  in.before = stored;
+  in.run = &out;
+  in.state = fp::to_string(s.ObserverOf(arm)->heartbeat(arm) ? s.ObserverOf(arm)->heartbeat(arm)->state
+                                                             : fp::NodeState::Boot);
+  in.bus = s.where(arm);
+  in.date_s = s.date_s();
+  json doc = json::object();
+  std::string error, before_path, after_path;
+  try {
+    if (a.info.active_slot >= 0 && !KeepImage(s, before, "arm" + std::to_string(arm) + "-before.vcal", &before_path, &error))
+      return ToolSession::Failure(kExitIo, error);
+    if (out.result.saved) {
+      const cal::NodeInfo after_info = cal::ReadNodeInfo(*a.link);
+      const StoredImage after = ReadStoredCalibration(*a.link, after_info);
+      in.info_after = after_info;
+      in.after = ValuesOf(after.params);
+      if (!KeepImage(s, after, "arm" + std::to_string(arm) + "-stored.vcal", &after_path, &error))
+        return ToolSession::Failure(kExitIo, error);
+    }
+  } catch (const cal::CalibrationAbort& e) {
+    return AbortOutcome(e, "read back", arm);
+  }
+  if (!before_path.empty()) doc["files"]["image_before"] = std::filesystem::path(before_path).filename().string();
+  if (!after_path.empty()) doc["files"]["image_stored"] = std::filesystem::path(after_path).filename().string();
+  ReportFiles files;
+  if (!WriteReport(in, s.session_dir(), "arm" + std::to_string(arm) + "-" + command, doc, &files, &error))
+    return ToolSession::Failure(kExitIo, error);
+  CommandOutcome o;
+  o.json = doc;
+  o.json["command"] = command;
+  o.json["session_dir"] = s.session_dir();
+  o.json["ok"] = !out.out_of_tolerance;
+  std::string result_line;
+  if (out.out_of_tolerance) {
+    o.exit_code = kExitFailed;
+    o.json["error"] = {{"code", kExitFailed}, {"name", ExitName(kExitFailed)},
+                       {"message", "arm " + std::to_string(arm) + ": " +
+                                       (save ? out.result.message
+                                             : std::string("the arm no longer matches its stored calibration"))}};
+    result_line = "FAIL: " + o.json["error"]["message"].get<std::string>();
+  } else {
+    result_line = save ? "PASS: calibration saved in slot " + SlotName(in.info_after ? in.info_after->active_slot : -1) +
+                             " (generation " +
+                             std::to_string(in.info_after && in.info_after->active_slot >= 0
+                                                ? in.info_after->slot_generation[static_cast<std::size_t>(in.info_after->active_slot)]
+                                                : 0) +
+                             ")"
+                       : "PASS: the arm matches its stored calibration (nothing was written)";
+  }
+  char t[64];
+  std::snprintf(t, sizeof t, "%.1f s of bus time", out.bus_time_s);
+  o.text = a.text + ": " + command + ", " + t + "\n" + ChecksText(out.checks);
+  if (in.after) o.text += "stored before:\n" + ValuesText(in.before) + "stored now:\n" + ValuesText(*in.after);
+  o.text += result_line + "\nreport: " + files.html + "\n";
+  return o;
+}
+
+}  // namespace
+
+CommandOutcome Calibrate(ToolSession& s, int arm, const CalibrateRequest& request) { return Measure(s, arm, request, true); }
+CommandOutcome Verify(ToolSession& s, int arm, const CalibrateRequest& request) { return Measure(s, arm, request, false); }
+
+}  // namespace vesica::app::calibrate

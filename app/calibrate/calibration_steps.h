@@ -1,0 +1,29 @@
+// The calibration's steps in the order they run (the core's procedures, device/calibration), what
+// each one moves (for the prompt) and roughly how long it takes on a nominal arm (progress).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vesica::app::calibrate {
+
+enum class Step { kCurrentOffset, kEncoderDirection, kRange, kIndex, kFriction, kGravity };
+
+struct StepInfo {
+  Step step;
+  const char* name;        ///< as on the command line and in the core's progress ("current offset")
+  const char* motion;      ///< what moves, for the prompt; null: nothing moves
+  double typical_s;        ///< bus time on the emulated arms, all three joints
+};
+
+const std::vector<StepInfo>& AllSteps();
+/// Every step, in order.
+std::vector<Step> AllStepList();
+const StepInfo& InfoOf(Step s);
+/// "current-offset" or "current offset", "direction", "range", "index", "friction", "gravity".
+std::optional<Step> StepNamed(const std::string& name);
+/// The names a user may type, for messages.
+std::string StepNames();
+
+}  // namespace vesica::app::calibrate
