@@ -21,6 +21,7 @@
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario_loader.h"
 #include "app/session/dissection_setup.h"
+#include "organ_sight.h"
 #include "physics/instrument/instrument_pose.h"
 #include "physics/scene/dissection_scene.h"
 #include "scope_rays.h"
@@ -84,49 +85,8 @@ class SurgeonViewTest : public ::testing::Test {
     static const auto model = BuildDissectionModelFor(*scenario_, *meshes_);
     return model;
   }
-  // The simulated organs as the scene has them now.
-  static physics::TriangleMesh LiverNow(const physics::DissectionScene& scene) {
-    physics::TriangleMesh m = scene.model().liver->rest_surface;
-    m.vertices = scene.liver_positions();
-    return m;
-  }
-  static physics::TriangleMesh GallbladderNow(const physics::DissectionScene& scene) {
-    physics::TriangleMesh m = scene.model().gallbladder_boundary.surface;
-    m.vertices = scene.gallbladder_surface_positions();
-    return m;
-  }
-  struct MembraneSight {
-    double area_m2 = 0;
-    double visible = 0;      // fraction of the area whose centroid the camera sees (nothing in between)
-    double not_edge_on = 0;  // fraction whose normal is within 78 degrees of the line of sight
-  };
-  // Each still-attached membrane triangle: is the segment from the scope's tip to its centroid
-  // free of the liver and the gallbladder (0.5 mm short of it: the membrane's corners lie on them)?
-  static MembraneSight SeeMembrane(const physics::DissectionScene& scene) {
-    const physics::TriangleMesh liver = LiverNow(scene), gallbladder = GallbladderNow(scene);
-    const physics::Vertices points = scene.membrane_points();
-    const physics::TissueMembrane& membrane = scene.tissue().membrane;
-    const Eigen::Vector3d eye = testing::ScopeEye(scenario_->laparoscope);
-    MembraneSight sight;
-    for (Eigen::Index f = 0; f < membrane.triangles.rows(); ++f) {
-      if (!scene.tissue().springs[static_cast<size_t>(membrane.springs(f, 0))].alive ||
-          !scene.tissue().springs[static_cast<size_t>(membrane.springs(f, 1))].alive)
-        continue;
-      const Eigen::Vector3d a = points.row(membrane.triangles(f, 0)), b = points.row(membrane.triangles(f, 1)),
-                            c = points.row(membrane.triangles(f, 2));
-      const Eigen::Vector3d n = (b - a).cross(c - a);
-      const double area = 0.5 * n.norm();
-      if (!(area > 0)) continue;
-      const Eigen::Vector3d centroid = (a + b + c) / 3.0, to = centroid - eye;
-      const Eigen::Vector3d dir = to.normalized();
-      sight.area_m2 += area;
-      if (Nearer(FirstRayHit(liver, eye, dir), FirstRayHit(gallbladder, eye, dir)) > to.norm() - 0.0005)
-        sight.visible += area;
-      if (std::abs(n.normalized().dot(dir)) > 0.2) sight.not_edge_on += area;
-    }
-    sight.visible /= sight.area_m2;
-    sight.not_edge_on /= sight.area_m2;
-    return sight;
+  static testing::MembraneSight SeeMembrane(const physics::DissectionScene& scene) {
+    return testing::SeeMembrane(scene, testing::ScopeEye(scenario_->laparoscope));
   }
   static physics::InstrumentPose Parked(const physics::DissectionModel& model, int i, double insertion_m) {
     const physics::InstrumentMount& m = model.instruments[static_cast<size_t>(i)];
@@ -206,7 +166,7 @@ TEST_F(SurgeonViewTest, TheFirstFrameShowsTheTriangleAndTheLiverEdgeWithTheBodyB
 TEST_F(SurgeonViewTest, TheAttachedMembraneIsInSightAtRest) {
   physics::DissectionScene scene(Model());
   ASSERT_GT(scene.tissue().num_alive(), 10);
-  const MembraneSight sight = SeeMembrane(scene);
+  const testing::MembraneSight sight = SeeMembrane(scene);
   std::printf("%d springs, membrane %.1f cm^2: %.1f %% in sight of the camera, %.1f %% not edge-on\n",
               scene.tissue().num_alive(), 1e4 * sight.area_m2, 100 * sight.visible, 100 * sight.not_edge_on);
   EXPECT_GE(sight.visible, 0.80);
@@ -222,9 +182,9 @@ TEST_F(SurgeonViewTest, RetractingHartmannsPouchLaterallyOpensTheMembraneToTheCa
   // Hartmann's pouch: where the grasper's line to the pouch's centre meets the gallbladder.
   const Eigen::Vector3d pouch = anatomy::SurgeonViewGallbladder(anatomy::SurgeonViewLiver().frame).points_m[3];
   const Eigen::Vector3d to_pouch = (pouch - grasper.p_RemoteCentre_W).normalized();
-  const auto surface = FirstRayHit(GallbladderNow(scene), grasper.p_RemoteCentre_W, to_pouch);
+  const auto surface = FirstRayHit(testing::GallbladderNow(scene), grasper.p_RemoteCentre_W, to_pouch);
   ASSERT_TRUE(surface.has_value()) << "the grasper's port sees Hartmann's pouch";
-  const auto liver_first = FirstRayHit(LiverNow(scene), grasper.p_RemoteCentre_W, to_pouch);
+  const auto liver_first = FirstRayHit(testing::LiverNow(scene), grasper.p_RemoteCentre_W, to_pouch);
   ASSERT_FALSE(liver_first && *liver_first < *surface) << "the grasper's line to the pouch crosses the liver at "
                                                        << *liver_first << " m, before the pouch at " << *surface;
   auto step_to = [&](const Eigen::Vector3d& target, double insertion, double jaw, double seconds) {
@@ -260,7 +220,7 @@ TEST_F(SurgeonViewTest, RetractingHartmannsPouchLaterallyOpensTheMembraneToTheCa
                            .norm() -
                        spring.rest_length);
   }
-  const MembraneSight sight = SeeMembrane(scene);
+  const testing::MembraneSight sight = SeeMembrane(scene);
   std::printf(
       "pouch pulled %.1f cm laterally: longest spring stretched %.1f mm; membrane %.1f cm^2: %.1f %% in sight, "
       "%.1f %% not edge-on\n",
