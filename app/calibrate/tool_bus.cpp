@@ -84,6 +84,9 @@ bool ToolBus::Open(const BusSpec& spec, const std::string& log_path, std::string
       }
       arms_[node] = std::move(arm);
     }
+    // The boot's own Identity (nothing negotiated yet) is on the bus for a moment: a Hello sent
+    // meanwhile would take it for the answer and call the node too old. Let the arms boot first.
+    AdvanceEmulated(std::chrono::milliseconds(20));
   }
   return true;
 }

@@ -1,0 +1,92 @@
+// vesica-calibrate against two vesica-armsim processes over UDP, as a technician meets the
+// trainer's emulated arms: scan finds both with identity, versions, state, faults and slots;
+// info reads one; the bus log of the session reads back frame for frame.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "../device/armsim_process.h"
+#include "app/calibrate/exit_codes.h"
+#include "firmware_protocol/buslog/bus_log_reader.h"
+#include "tool_process.h"
+
+namespace vesica::app::calibrate {
+namespace {
+
+using testing::RunTool;
+
+TEST(CalibrateArmsim, ScanFindsBothArmsWithIdentityVersionsStateFaultsAndSlots) {
+  const int base = device::testing::FreeArmBasePort();
+  ASSERT_NE(base, 0);
+  device::testing::ArmsimProcess left, right;
+  ASSERT_TRUE(left.Start(VESICA_ARMSIM_PATH, {"--node-id", "1", "--local-port", std::to_string(base), "--random-arm",
+                                              "9", "--log-level", "warn"}));
+  ASSERT_TRUE(right.Start(VESICA_ARMSIM_PATH,
+                          {"--node-id", "2", "--local-port", std::to_string(base + 2), "--log-level", "warn"}));
+  const std::string dir = testing::FreshDir("armsim-scan");
+  // The arms boot within a moment; scan until both answer (each try is a whole scan).
+  testing::ToolRun run;
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    run = RunTool({"--udp-base-port", std::to_string(base), "--dir", dir, "--json", "scan"});
+    if (run.exit_code == 0 && run.json()["arms"][1]["found"].get<bool>() && run.json()["arms"][0]["found"].get<bool>())
+      break;
+  }
+  ASSERT_EQ(run.exit_code, kExitOk) << run.err;
+  const nlohmann::json j = run.json();
+  EXPECT_EQ(j["bus"], "UDP 127.0.0.1:" + std::to_string(base));
+  ASSERT_EQ(j["arms"].size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const nlohmann::json& a = j["arms"][k];
+    EXPECT_TRUE(a["found"].get<bool>());
+    EXPECT_EQ(a["arm"], k + 1);
+    EXPECT_EQ(a["node"], k + 1);
+    EXPECT_EQ(a["serial"], 0x5E51CA01u);  // vesica-armsim's board serial
+    EXPECT_EQ(a["firmware_version"], "1.0.0");
+    EXPECT_EQ(a["protocol"], "1.1");
+    EXPECT_EQ(a["protocol_negotiated_minor"], 1);
+    EXPECT_EQ(a["state"], "pre-operational");
+    EXPECT_EQ(a["latched_fault"], "none");
+    EXPECT_EQ(a["fault_count"], 0);
+    ASSERT_EQ(a["slots"].size(), 2u);
+  }
+  // A blank board (node 1) has no calibration; the emulator stores node 2's id on first boot,
+  // so its slot A is valid (generation 1) and in use.
+  EXPECT_EQ(j["arms"][0]["active_slot"], nullptr);
+  EXPECT_EQ(j["arms"][0]["slots"][0]["status"], "blank");
+  EXPECT_EQ(j["arms"][0]["slots"][1]["status"], "blank");
+  EXPECT_EQ(j["arms"][1]["active_slot"], "A");
+  EXPECT_EQ(j["arms"][1]["slots"][0]["status"], "ok");
+  EXPECT_EQ(j["arms"][1]["slots"][0]["generation"], 1);
+  EXPECT_TRUE(j["arms"][1]["slots"][0]["in_use"].get<bool>());
+  EXPECT_EQ(j["arms"][1]["slots"][1]["status"], "blank");
+
+  // The human form says the same.
+  const auto text = RunTool({"--udp-base-port", std::to_string(base), "--dir", dir, "scan"});
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("arm 1 (node 1, serial 0x5E51CA01): state pre-operational\n"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("  slot A: ok, generation 1 (in use)\n"), std::string::npos) << text.out;
+
+  // info of the right arm: its stored values (the defaults of the parameter table).
+  const auto info = RunTool({"--udp-base-port", std::to_string(base), "--dir", dir, "--json", "info", "right"});
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const nlohmann::json i = info.json();
+  EXPECT_EQ(i["arm"], 2);
+  EXPECT_EQ(i["calibration"]["insertion"]["joint_max"], static_cast<double>(0.25f));
+  EXPECT_EQ(i["calibration"]["yaw"]["direction"], 1);
+
+  // The bus log of that session reads back, as many frames as the tool logged, on interface udp2.
+  std::ifstream log(i["bus_log"].get<std::string>());
+  std::vector<fp::BusLogEntry> entries;
+  std::string error;
+  ASSERT_TRUE(fp::read_bus_log(log, entries, error)) << error;
+  EXPECT_EQ(entries.size(), i["bus_log_frames"].get<std::uint64_t>());
+  EXPECT_GT(entries.size(), 40u);
+  for (const auto& e : entries) EXPECT_EQ(e.interface, "udp2");
+  left.Kill(SIGTERM);
+  right.Kill(SIGTERM);
+  EXPECT_EQ(left.Finish(nullptr), 0);
+  EXPECT_EQ(right.Finish(nullptr), 0);
+}
+
+}  // namespace
+}  // namespace vesica::app::calibrate

@@ -1,0 +1,123 @@
+// vesica-calibrate (the real program) calibrates seeded random emulated arms: the report's
+// numbers are the arm's ground truth within issue 32's tolerances, what was stored is what the
+// report says, the files beside it are what they claim, and the bus log reads back whole.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include "app/calibrate/stored_calibration.h"
+#include "firmware_protocol/buslog/bus_log_reader.h"
+#include "firmware_protocol/emulator/arm_ground_truth.h"
+#include "firmware_protocol/node/parameter_table.h"
+#include "tool_process.h"
+
+namespace vesica::app::calibrate {
+namespace {
+
+namespace emu = fp::emulator;
+using testing::RunTool;
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr const char* kJoint[3] = {"yaw", "pitch", "insertion"};
+
+class CalibrateGroundTruth : public ::testing::TestWithParam<std::uint64_t> {};
+
+TEST_P(CalibrateGroundTruth, TheReportsNumbersAreTheArmsGroundTruth) {
+  const std::uint64_t seed = GetParam();
+  const std::string dir = testing::FreshDir("truth-" + std::to_string(seed));
+  const auto run = RunTool({"--emulated", std::to_string(seed), "--dir", dir, "--json", "--yes", "--quiet", "--date",
+                            "1790000000", "calibrate", "1"});
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+  const nlohmann::json r = run.json();
+  EXPECT_TRUE(r["ok"].get<bool>());
+  EXPECT_TRUE(r["saved"].get<bool>());
+  EXPECT_TRUE(r["all_pass"].get<bool>());
+
+  const emu::ArmGroundTruth t = emu::RandomArm(seed);
+  const double park[3] = {0.0, 0.0, static_cast<double>(0.135f)};
+  for (int j = 0; j < 3; ++j) {
+    const auto& m = r["measured"]["joints"][kJoint[j]];
+    const double count = t.count(j);
+    const int dir_sign = m["direction"].get<int>();
+    EXPECT_EQ(dir_sign, t.plant.encoder[j].direction) << kJoint[j];
+    // The board reads park + whole counts since power-up: the true offset, half a count added.
+    const double true_offset = t.power_up[emu::JointOfMotor(j)] - dir_sign * park[j] + 0.5 * count;
+    EXPECT_LE(std::abs(m["position_offset"].get<double>() - true_offset), 2 * count) << kJoint[j];
+    EXPECT_LE(std::abs(m["index_position"].get<double>() - t.reference_index(j)), 2 * count) << kJoint[j];
+    const double range_tol = j < 2 ? 0.5 * kDeg : 0.5e-3;
+    EXPECT_NEAR(m["lower_stop"].get<double>(), t.lower_stop(j), range_tol) << kJoint[j];
+    EXPECT_NEAR(m["upper_stop"].get<double>(), t.upper_stop(j), range_tol) << kJoint[j];
+    // Friction in the node's torque units (its nominal Kt): what a current really gives.
+    const double kt = t.torque_constant_ratio(
+        j, fp::find_parameter(static_cast<std::uint16_t>(fp::param::kTorqueConstant + j))->default_value);
+    EXPECT_NEAR(m["coulomb"].get<double>(), t.coulomb(j) / kt, 0.10 * t.coulomb(j) / kt) << kJoint[j];
+    EXPECT_NEAR(m["viscous"].get<double>(), t.viscous(j) / kt, 0.10 * t.viscous(j) / kt) << kJoint[j];
+    EXPECT_NEAR(m["current_offset_A"].get<double>(), t.plant.current_sensor_offset_A[j], 1e-4) << kJoint[j];
+    // What is stored now is what was measured (the float the node keeps).
+    const auto& after = r["after"][kJoint[j]];
+    EXPECT_EQ(after["direction"].get<int>(), dir_sign);
+    EXPECT_FLOAT_EQ(static_cast<float>(after["position_offset"].get<double>()),
+                    static_cast<float>(m["position_offset"].get<double>()));
+    EXPECT_FLOAT_EQ(static_cast<float>(after["coulomb"].get<double>()), static_cast<float>(m["coulomb"].get<double>()));
+    EXPECT_FLOAT_EQ(static_cast<float>(after["joint_min"].get<double>()),
+                    static_cast<float>(m["lower_stop"].get<double>() + (j < 2 ? 0.02 : 0.002)));
+    // The previous calibration was the blank board's defaults.
+    EXPECT_EQ(r["before"][kJoint[j]]["coulomb"].get<double>(), 0.0);
+  }
+  // Gravity within 10 % of its amplitude over the pitch range.
+  const double kt = t.torque_constant_ratio(1, fp::find_parameter(fp::param::kTorqueConstant + 1)->default_value);
+  const double gs = -t.plant.pitch_gravity_sin_Nm / kt, gc = -t.plant.pitch_gravity_cos_Nm / kt;
+  const double rs = r["measured"]["gravity"]["sin"].get<double>(), rc = r["measured"]["gravity"]["cos"].get<double>();
+  double worst = 0.0;
+  for (double a = t.lower_stop(1); a <= t.upper_stop(1); a += 0.01)
+    worst = std::max(worst, std::abs(rs * std::sin(a) + rc * std::cos(a) - (gs * std::sin(a) + gc * std::cos(a))));
+  EXPECT_LE(worst, 0.10 * std::hypot(gs, gc));
+
+  // Every check in the report has its tolerance and passed; one per measured value.
+  EXPECT_EQ(r["checks"].size(), 28u);
+  for (const auto& c : r["checks"]) {
+    EXPECT_TRUE(c["pass"].get<bool>()) << c.dump();
+    EXPECT_LE(c["min"].get<double>(), c["value"].get<double>());
+    EXPECT_GE(c["max"].get<double>(), c["value"].get<double>());
+  }
+
+  // The files: the report's JSON equals what was printed, the PNGs are PNGs, the image copy is
+  // the slot the node booted (generation 1, the date given, this arm's serial).
+  const std::string session = r["session_dir"].get<std::string>();
+  std::ifstream report_json(session + "/" + r["files"]["report_json"].get<std::string>());
+  nlohmann::json from_file = nlohmann::json::parse(report_json);
+  EXPECT_EQ(from_file["measured"], r["measured"]);
+  EXPECT_EQ(from_file["checks"], r["checks"]);
+  for (const char* png : {"friction_png", "range_png"}) {
+    const auto bytes = testing::ReadBytes(session + "/" + r["files"][png].get<std::string>());
+    ASSERT_GT(bytes.size(), 1000u) << png;
+    EXPECT_EQ(std::string(bytes.begin() + 1, bytes.begin() + 4), "PNG") << png;
+  }
+  const auto html = testing::ReadBytes(session + "/" + r["files"]["report_html"].get<std::string>());
+  EXPECT_NE(std::string(html.begin(), html.end()).find("yaw.coulomb"), std::string::npos);
+  const ImageFileCheck image = ReadImageFile(session + "/" + r["files"]["image_stored"].get<std::string>());
+  ASSERT_EQ(image.exit_code, 0) << image.message;
+  EXPECT_EQ(image.image.header.generation, 1u);
+  EXPECT_EQ(image.image.header.date_s, 1790000000u);
+  EXPECT_EQ(image.image.header.serial, r["node"]["serial"].get<std::uint32_t>());
+  const CalibrationValues stored = ValuesOf(image.image.params);
+  EXPECT_FLOAT_EQ(static_cast<float>(stored.joint[0].coulomb), static_cast<float>(r["after"]["yaw"]["coulomb"].get<double>()));
+  // The image copy is the node's slot byte for byte: the emulated flash holds it at slot A.
+  const auto flash = testing::ReadBytes(dir + "/emulated/seed-" + std::to_string(seed) + "-arm-1.flash");
+  ASSERT_GE(flash.size(), image.image.bytes.size());
+  EXPECT_TRUE(std::equal(image.image.bytes.begin(), image.image.bytes.end(), flash.begin()));
+
+  // The bus log: candump -l lines, every one read back, as many as the tool says it logged.
+  std::ifstream log(r["bus_log"].get<std::string>());
+  std::vector<fp::BusLogEntry> entries;
+  std::string error;
+  ASSERT_TRUE(fp::read_bus_log(log, entries, error)) << error;
+  EXPECT_EQ(entries.size(), r["bus_log_frames"].get<std::uint64_t>());
+  EXPECT_GT(entries.size(), 10000u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, CalibrateGroundTruth, ::testing::Values(3u, 11u, 27u, 40u));
+
+}  // namespace
+}  // namespace vesica::app::calibrate

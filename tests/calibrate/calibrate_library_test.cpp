@@ -1,0 +1,98 @@
+// The commands as a library (what the trainer's panel will call): progress comes step by step
+// through ToolUi, and the panel's abort flag set mid-step ends the calibration with the arm
+// disabled, no current, its stored calibration in force and its flash untouched.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <map>
+
+#include "app/calibrate/commands.h"
+#include "app/calibrate/exit_codes.h"
+#include "device/calibration/calibration_abort.h"
+#include "firmware_protocol/node/parameter_table.h"
+#include "tool_process.h"
+
+namespace vesica::app::calibrate {
+namespace {
+
+// A panel: records the steps it was shown and presses Abort when `abort_at` begins.
+class PanelUi final : public ToolUi {
+ public:
+  std::atomic<bool> abort{false};
+  std::string abort_at;
+  std::vector<std::string> steps;
+  std::map<std::string, double> last_fraction;
+  int prompts = 0;
+  void Progress(int, const std::string& step, double fraction, double) override {
+    if (steps.empty() || steps.back() != step) steps.push_back(step);
+    last_fraction[step] = fraction;
+    if (step == abort_at) abort = true;
+  }
+  bool ConfirmMotion(const MotionNotice& notice) override {
+    ++prompts;
+    EXPECT_EQ(notice.arm, 1);
+    EXPECT_EQ(notice.motions.size(), 5u);
+    return true;
+  }
+  void Note(const std::string&) override {}
+};
+
+ToolOptions EmulatedOptions(const std::string& dir) {
+  ToolOptions o;
+  o.bus.kind = BusSpec::Kind::kEmulated;
+  o.bus.emulated_seed = 33;
+  o.data_dir = dir;
+  o.command = "calibrate";
+  o.date_s = 1790000000;
+  return o;
+}
+
+TEST(CalibrateLibrary, ThePanelSeesEveryStepAndItsAbortLeavesTheStoredCalibration) {
+  const std::string dir = testing::FreshDir("library");
+  {
+    PanelUi ui;
+    ToolSession session(EmulatedOptions(dir), ui, &ui.abort);
+    const CommandOutcome o = Calibrate(session, 1, CalibrateRequest{});
+    ASSERT_EQ(o.exit_code, kExitOk) << o.text;
+    EXPECT_EQ(ui.prompts, 1);
+    EXPECT_EQ(ui.steps, (std::vector<std::string>{"current offset", "encoder direction", "range", "index", "friction",
+                                                  "gravity", "save"}));
+    for (const auto& [step, fraction] : ui.last_fraction) EXPECT_EQ(fraction, 1.0) << step;
+  }
+  PanelUi ui;
+  ui.abort_at = "friction";
+  ToolSession session(EmulatedOptions(dir), ui, &ui.abort);
+  // The arm as stored, before the second calibration opens its session.
+  const CommandOutcome info = Info(session, 1);
+  ASSERT_EQ(info.exit_code, kExitOk);
+  auto* arm = session.bus().emulated_arm(1);
+  ASSERT_NE(arm, nullptr);
+  const std::vector<std::uint8_t> flash = arm->board().flash().bytes();
+  const float coulomb = arm->node().parameters().f32(fp::param::kCoulombFriction + 1);
+
+  const CommandOutcome o = Calibrate(session, 1, CalibrateRequest{});
+  EXPECT_EQ(o.exit_code, kExitAborted);
+  EXPECT_EQ(o.json["error"]["step"], "friction");
+  EXPECT_EQ(o.json["error"]["reason"], "abort_requested");
+  EXPECT_EQ(o.json["error"]["message"],
+            "arm 1: calibration aborted by the user; the stored calibration is in force");
+  // Let the node take the abort frame.
+  // A few bus periods for the node to take the abort frame (the link still refuses to go on).
+  std::string error;
+  device::calibration::CalibrationLink* link = session.LinkTo(1, &error);
+  for (int i = 0; i < 20; ++i) {
+    try {
+      link->Cycle({});
+    } catch (const device::calibration::CalibrationAbort&) {
+    }
+  }
+  EXPECT_FALSE(arm->node().enabled());
+  EXPECT_FALSE(arm->node().calibration_session_open());
+  for (float a : arm->node().applied_current()) EXPECT_EQ(a, 0.0f);
+  EXPECT_EQ(arm->node().active_slot(), 0);
+  EXPECT_EQ(arm->node().parameters().f32(fp::param::kCoulombFriction + 1), coulomb);
+  EXPECT_EQ(arm->board().flash().bytes(), flash) << "something was written";
+}
+
+}  // namespace
+}  // namespace vesica::app::calibrate
