@@ -93,7 +93,7 @@ class DissectionScene {
   const Eigen::Vector3d& tool_tip(int i) const { return tips_.at(static_cast<size_t>(i)); }
   const HapticContactFrame& haptic_frame(int i) const { return frames_.at(static_cast<size_t>(i)); }
   /// Liver kinetic energy is not modelled (quasi-static BEM); this is the gallbladder's kinetic +
-  /// elastic energy plus the springs' potential energy, J.
+  /// elastic energy plus the springs' and the assistant's hold's potential energy, J.
   double Energy() const;
 
  private:
