@@ -163,6 +163,28 @@ TEST(CalibrateBadInput, AStoredImageWithABadCrcOrNotACalibrationChangesNothing) 
   EXPECT_EQ(FilesUnder(dir), files) << "a file was written";
 }
 
+TEST(CalibrateBadInput, ACorruptSlotIsNamedInInfoAndNotRestored) {
+  const std::string dir = testing::FreshDir("corrupt-slot");
+  CalibrateOnce(dir);  // slot A, generation 1
+  auto second = RunTool({"--emulated", "5", "--dir", dir, "--yes", "--quiet", "calibrate", "1", "--step", "gravity"});
+  ASSERT_EQ(second.exit_code, 0) << second.err;  // slot B, generation 2, in use
+  // A bit of slot A's parameter image flips in the flash (slot A at 0, its image after 24 bytes).
+  const std::string flash_file = dir + "/emulated/seed-5-arm-1.flash";
+  auto flash = ReadBytes(flash_file);
+  flash[40] ^= 0x10;
+  std::ofstream(flash_file, std::ios::binary).write(reinterpret_cast<const char*>(flash.data()),
+                                                     static_cast<std::streamsize>(flash.size()));
+  const auto info = RunTool({"--emulated", "5", "--dir", dir, "info", "1"});
+  ASSERT_EQ(info.exit_code, kExitOk) << info.err;
+  EXPECT_NE(info.out.find("  slot A: corrupt (bad CRC)\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("  slot B: ok, generation 2 (in use)\n"), std::string::npos) << info.out;
+  const auto restore = RunTool({"--emulated", "5", "--dir", dir, "restore", "1", "--slot", "A"});
+  EXPECT_EQ(restore.exit_code, kExitStorage);
+  EXPECT_NE(restore.err.find("arm 1: slot A is corrupt (bad CRC); nothing was written"), std::string::npos)
+      << restore.err;
+  EXPECT_EQ(ReadBytes(flash_file), flash) << "the arm's flash changed";
+}
+
 TEST(CalibrateBadInput, CtrlCMidStepLeavesTheArmOnItsStoredCalibrationAndWritesNoReport) {
   const std::string dir = testing::FreshDir("sigint");
   CalibrateOnce(dir);
