@@ -62,7 +62,10 @@ std::string Num(const json& v) {
   return b;
 }
 
-std::string Name(const json& v) { return Escape(v.is_string() ? v.get<std::string>() : v.dump()); }
+std::string Name(const json& v) {
+  if (v.is_null()) return "none";
+  return Escape(v.is_string() ? v.get<std::string>() : v.dump());
+}
 
 }  // namespace
 
@@ -84,7 +87,13 @@ std::string ReportHtml(const json& d) {
   if (d.contains("checks")) {
     const bool pass = d["all_pass"].get<bool>();
     h += std::string("<h2>Result: <span class=\"") + (pass ? "pass\">PASS" : "fail\">FAIL") + "</span>" +
-         (d["saved"].get<bool>() ? ", saved" : ", not saved") + "</h2>\n";
+         (d["saved"].get<bool>() ? ", saved" : ", not saved");
+    if (d.contains("node_after") && !d["node_after"]["active_slot"].is_null()) {
+      const json& a = d["node_after"];
+      const int k = a["active_slot"] == "A" ? 0 : 1;
+      h += " in slot " + Name(a["active_slot"]) + " (generation " + Num(a["slots"][k]["generation"]) + ")";
+    }
+    h += "</h2>\n";
     h += "<p>Steps: ";
     for (const auto& s : d["steps"]) h += Name(s["step"]) + " (" + Num(s["bus_time_s"]) + " s); ";
     h += "bus time " + Num(d["bus_time_s"]) + " s.</p>\n";
