@@ -47,7 +47,8 @@ CommandOutcome Scan(ToolSession& s) {
       o.text += InfoText(a, hb);
       continue;
     }
-    if (failure.exit_code == kExitIo || failure.exit_code == kExitAborted) return failure;
+    // Ctrl-C ends the scan; an arm that fails is listed and the scan goes on.
+    if (failure.exit_code == kExitIo || s.aborted()) return failure;
     if (failure.exit_code == kExitProtocolTooOld) ++too_old;
     arms.push_back({{"arm", arm},
                     {"found", failure.exit_code == kExitProtocolTooOld},

@@ -64,6 +64,10 @@ cal::CalibrationLink* ToolSession::LinkTo(int node, std::string* error) {
   if (!t) return nullptr;
   cal::CalibrationLinkConfig config;
   config.node_id = static_cast<std::uint8_t>(node);
+  // Nothing moves outside calibrate and verify: a late joint state there (a loaded host, user-mode
+  // Linux) is not a lost arm. In a calibration the core's 50 ms stands.
+  if (options_.command != "calibrate" && options_.command != "verify")
+    config.loss_timeout = std::chrono::milliseconds(500);
   cal::CalibrationLink*& ptr = link_ptrs_[node];
   auto waiter = bus_.WaiterFor(node, ptr, abort_);
   auto link = std::make_unique<cal::CalibrationLink>(*t, [this, waiter](fp::Nanoseconds until) {
