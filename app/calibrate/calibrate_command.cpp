@@ -1,5 +1,6 @@
 // calibrate and verify: the arm moves. One prompt before the session opens (the node's watchdog
 // would end a session left waiting for a person), then the steps with progress, then the checks.
+#include <chrono>
 #include <filesystem>
 
 #include "app/calibrate/calibration_report.h"
@@ -132,10 +133,14 @@ CommandOutcome Measure(ToolSession& s, int arm, const CalibrateRequest& request,
   if (!before_path.empty()) doc["files"]["image_before"] = std::filesystem::path(before_path).filename().string();
   if (!after_path.empty()) doc["files"]["image_stored"] = std::filesystem::path(after_path).filename().string();
   ReportFiles files;
+  const auto render_start = std::chrono::steady_clock::now();
   if (!WriteReport(in, s.session_dir(), "arm" + std::to_string(arm) + "-" + command, doc, &files, &error))
     return ToolSession::Failure(kExitIo, error);
   CommandOutcome o;
   o.json = doc;
+  // Wall time of the report (plots, HTML, JSON): printed, not in the report file, which stays
+  // the same for the same arm.
+  o.json["report_write_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
   o.json["command"] = command;
   o.json["session_dir"] = s.session_dir();
   o.json["ok"] = !out.out_of_tolerance;

@@ -41,7 +41,9 @@ int main(int argc, char** argv) {
                  "arm n listens on this + 2(n-1), the tool on the port above (as the trainer)")
       ->check(CLI::Range(1, 65531));
   app.add_option("--emulated", emulated_seed,
-                 "in-process emulated random arms (arm n: seed + n - 1), in bus time: for training and tests");
+                 "in-process emulated random arms (arm n: seed + n - 1, seed >= 1), in bus time: for training and tests")
+      ->check(CLI::Validator([](std::string& v) { return v == "0" ? std::string("the seed is 1 or more") : std::string(); },
+                             "SEED >= 1"));
   app.add_flag("--json", json, "print one JSON document (stable keys) on stdout");
   app.add_flag("-y,--yes", yes, "answer yes to the prompt before an arm moves (scripts)");
   app.add_flag("-q,--quiet", quiet, "no progress or notes on stderr");
