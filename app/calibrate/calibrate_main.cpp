@@ -78,12 +78,23 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
-    return rc == 0 ? c::kExitOk : c::kExitUsage;
+    if (rc == 0) return c::kExitOk;  // --help
+    // A script that asked for JSON gets JSON for a bad command line too.
+    for (int i = 1; i < argc; ++i)
+      if (std::string(argv[i]) == "--json") {
+        nlohmann::json j = c::ToolSession::Failure(c::kExitUsage, e.what()).json;
+        j["exit_code"] = static_cast<int>(c::kExitUsage);
+        std::cout << j.dump(2) << "\n";
+      }
+    return c::kExitUsage;
   }
 
   const auto usage = [&](int code, const std::string& message) {
-    if (json)
-      std::cout << c::ToolSession::Failure(code, message).json.dump(2) << "\n";
+    if (json) {
+      nlohmann::json j = c::ToolSession::Failure(code, message).json;
+      j["exit_code"] = code;
+      std::cout << j.dump(2) << "\n";
+    }
     std::fprintf(stderr, "vesica-calibrate: %s\n", message.c_str());
     return code;
   };

@@ -54,6 +54,27 @@ TEST(CalibrateBadInput, AnUnknownArmIsRefusedBeforeAnythingOpens) {
   EXPECT_FALSE(std::filesystem::exists(dir)) << "something was written";
 }
 
+TEST(CalibrateBadInput, ABadCommandLineIsAUsageErrorAndWritesNothing) {
+  const std::string dir = testing::FreshDir("usage");
+  auto run = RunTool({"--dir", dir, "--json", "--bogus", "scan"});
+  EXPECT_EQ(run.exit_code, kExitUsage);
+  EXPECT_EQ(run.json()["error"]["message"], "The following argument was not expected: --bogus");
+  run = RunTool({"--dir", dir, "--json", "calibrate", "1", "--joint", "elbow"});
+  EXPECT_EQ(run.exit_code, kExitUsage);
+  EXPECT_EQ(run.json()["error"]["message"], "unknown joint 'elbow': yaw, pitch or insertion");
+  run = RunTool({"--dir", dir, "calibrate", "1", "--step", "spin"});
+  EXPECT_EQ(run.exit_code, kExitUsage);
+  EXPECT_NE(run.err.find("unknown step 'spin': current-offset, direction, range, index, friction, gravity"),
+            std::string::npos)
+      << run.err;
+  run = RunTool({"--dir", dir, "--can", "can0", "--emulated", "3", "scan"});
+  EXPECT_EQ(run.exit_code, kExitUsage);
+  EXPECT_NE(run.err.find("choose one of --can, --udp and --emulated"), std::string::npos) << run.err;
+  run = RunTool({"--dir", dir, "restore", "1", "--slot", "C"});
+  EXPECT_EQ(run.exit_code, kExitUsage);
+  EXPECT_FALSE(std::filesystem::exists(dir)) << "something was written";
+}
+
 TEST(CalibrateBadInput, NoArmOnTheBusIsSaidAndOnlyTheBusLogIsWritten) {
   const std::string dir = testing::FreshDir("no-arm");
   const std::uint16_t base = FreeBasePort();
