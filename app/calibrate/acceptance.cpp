@@ -71,7 +71,8 @@ std::vector<Check> VerifyChecks(const device::calibration::CalibrationResult& r,
     const std::string length = rotary ? "rad" : "m";
     const auto& m = r.joint[j];
     const auto& s = stored.joint[j];
-    if (Ran(steps, Step::kCurrentOffset)) AddDiff(c, n + ".current_offset", "A", m.current_offset_A, s.current_offset_A, 0.01);
+    if (Ran(steps, Step::kCurrentOffset))
+      AddDiff(c, n + ".current_offset", "A", m.current_offset_A, s.current_offset_A, 0.01);
     if (Ran(steps, Step::kEncoderDirection)) AddDiff(c, n + ".direction", "", m.direction, s.direction, 0.0);
     if (Ran(steps, Step::kRange)) {
       // 0.5 degree or 0.5 mm, as the calibration's own accuracy.
@@ -84,7 +85,8 @@ std::vector<Check> VerifyChecks(const device::calibration::CalibrationResult& r,
       AddDiff(c, n + ".index_position", length, m.index_position, s.index_position, rotary ? 0.002 : 0.05e-3);
     if (Ran(steps, Step::kFriction)) {
       AddDiff(c, n + ".coulomb", rotary ? "N m" : "N", m.coulomb, s.coulomb, 0.1 * std::abs(s.coulomb) + 1e-6);
-      AddDiff(c, n + ".viscous", rotary ? "N m s/rad" : "N s/m", m.viscous, s.viscous, 0.1 * std::abs(s.viscous) + 1e-6);
+      AddDiff(c, n + ".viscous", rotary ? "N m s/rad" : "N s/m", m.viscous, s.viscous,
+              0.1 * std::abs(s.viscous) + 1e-6);
     }
   }
   if (((joints >> 1) & 1u) && Ran(steps, Step::kGravity)) {

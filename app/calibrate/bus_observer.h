@@ -27,7 +27,9 @@ class BusObserver final : public fp::Transport {
  public:
   explicit BusObserver(fp::Transport& inner) : inner_(inner) {}
 
-  fp::SendStatus send(const fp::CanFrame& frame, fp::Nanoseconds deadline) override { return inner_.send(frame, deadline); }
+  fp::SendStatus send(const fp::CanFrame& frame, fp::Nanoseconds deadline) override {
+    return inner_.send(frame, deadline);
+  }
   bool receive(fp::TimedFrame& out) override;
   bool poll_event(fp::BusEvent& out) override { return inner_.poll_event(out); }
   bool wait(fp::Nanoseconds timeout) override { return inner_.wait(timeout); }

@@ -42,7 +42,8 @@ std::string StoredImageName(const StoredImage& i) {
 }
 
 // A copy in the session folder and in the archive restore --slot reads.
-bool KeepImage(ToolSession& s, const StoredImage& image, const std::string& name, std::string* path, std::string* error) {
+bool KeepImage(ToolSession& s, const StoredImage& image, const std::string& name, std::string* path,
+               std::string* error) {
   std::error_code ec;
   std::filesystem::create_directories(s.image_archive(), ec);
   *path = s.session_dir() + "/" + name;
@@ -63,19 +64,25 @@ CommandOutcome Measure(ToolSession& s, int arm, const CalibrateRequest& request,
   }
   const CalibrationValues stored = ValuesOf(before.params);
   if (!save && a.info.active_slot < 0)
-    return ToolSession::Failure(kExitFailed, "arm " + std::to_string(arm) + " has no stored calibration to verify; run "
-                                                 "`vesica-calibrate calibrate " + std::to_string(arm) + "` first",
+    return ToolSession::Failure(kExitFailed,
+                                "arm " + std::to_string(arm) +
+                                    " has no stored calibration to verify; run "
+                                    "`vesica-calibrate calibrate " +
+                                    std::to_string(arm) + "` first",
                                 {{"arm", arm}});
   // A step alone starts from the stored calibration (range, directions): a blank arm has none.
   const bool partial = request.steps != AllStepList() && request.steps != std::vector<Step>{Step::kCurrentOffset};
   if (save && partial && a.info.active_slot < 0)
-    return ToolSession::Failure(kExitFailed, "arm " + std::to_string(arm) + " has no stored calibration for --step " +
-                                                 InfoOf(request.steps.front()).name +
-                                                 " to start from; run a whole calibration first (nothing moved)",
+    return ToolSession::Failure(kExitFailed,
+                                "arm " + std::to_string(arm) + " has no stored calibration for --step " +
+                                    InfoOf(request.steps.front()).name +
+                                    " to start from; run a whole calibration first (nothing moved)",
                                 {{"arm", arm}});
   if (!s.ui().ConfirmMotion(NoticeFor(a, request)))
-    return ToolSession::Failure(kExitAborted, "arm " + std::to_string(arm) + ": not confirmed; nothing moved, nothing "
-                                                   "was written",
+    return ToolSession::Failure(kExitAborted,
+                                "arm " + std::to_string(arm) +
+                                    ": not confirmed; nothing moved, nothing "
+                                    "was written",
                                 {{"arm", arm}});
   RunRequest run;
   run.plan.joints = static_cast<std::uint8_t>(request.joints);
@@ -98,7 +105,8 @@ CommandOutcome Measure(ToolSession& s, int arm, const CalibrateRequest& request,
   s.ui().Note(a.text + ": " + command + " (" + Describe(s.options().bus) + ")");
   const RunOutcome out = RunCalibration(*a.link, *s.ObserverOf(arm), run);
   if (out.result.abort != cal::AbortReason::kNone) {
-    CommandOutcome o = AbortOutcome(cal::CalibrationAbort(out.result.abort, out.result.message), out.result.failed_step, arm);
+    CommandOutcome o =
+        AbortOutcome(cal::CalibrationAbort(out.result.abort, out.result.message), out.result.failed_step, arm);
     o.json["command"] = command;
     return o;
   }
@@ -110,14 +118,15 @@ CommandOutcome Measure(ToolSession& s, int arm, const CalibrateRequest& request,
   in.info = a.info;
   in.before = stored;
   in.run = &out;
-  in.state = fp::to_string(s.ObserverOf(arm)->heartbeat(arm) ? s.ObserverOf(arm)->heartbeat(arm)->state
-                                                             : fp::NodeState::Boot);
+  in.state =
+      fp::to_string(s.ObserverOf(arm)->heartbeat(arm) ? s.ObserverOf(arm)->heartbeat(arm)->state : fp::NodeState::Boot);
   in.bus = s.where(arm);
   in.date_s = s.date_s();
   json doc = json::object();
   std::string error, before_path, after_path;
   try {
-    if (a.info.active_slot >= 0 && !KeepImage(s, before, "arm" + std::to_string(arm) + "-before.vcal", &before_path, &error))
+    if (a.info.active_slot >= 0 &&
+        !KeepImage(s, before, "arm" + std::to_string(arm) + "-before.vcal", &before_path, &error))
       return ToolSession::Failure(kExitIo, error);
     if (out.result.saved) {
       const cal::NodeInfo after_info = cal::ReadNodeInfo(*a.link);
@@ -147,19 +156,22 @@ CommandOutcome Measure(ToolSession& s, int arm, const CalibrateRequest& request,
   std::string result_line;
   if (out.out_of_tolerance) {
     o.exit_code = kExitFailed;
-    o.json["error"] = {{"code", kExitFailed}, {"name", ExitName(kExitFailed)},
-                       {"message", "arm " + std::to_string(arm) + ": " +
-                                       (save ? out.result.message
-                                             : std::string("the arm no longer matches its stored calibration"))}};
+    o.json["error"] = {
+        {"code", kExitFailed},
+        {"name", ExitName(kExitFailed)},
+        {"message", "arm " + std::to_string(arm) + ": " +
+                        (save ? out.result.message : std::string("the arm no longer matches its stored calibration"))}};
     result_line = "FAIL: " + o.json["error"]["message"].get<std::string>();
   } else {
-    result_line = save ? "PASS: calibration saved in slot " + SlotName(in.info_after ? in.info_after->active_slot : -1) +
-                             " (generation " +
-                             std::to_string(in.info_after && in.info_after->active_slot >= 0
-                                                ? in.info_after->slot_generation[static_cast<std::size_t>(in.info_after->active_slot)]
-                                                : 0) +
-                             ")"
-                       : "PASS: the arm matches its stored calibration (nothing was written)";
+    result_line =
+        save ? "PASS: calibration saved in slot " + SlotName(in.info_after ? in.info_after->active_slot : -1) +
+                   " (generation " +
+                   std::to_string(
+                       in.info_after && in.info_after->active_slot >= 0
+                           ? in.info_after->slot_generation[static_cast<std::size_t>(in.info_after->active_slot)]
+                           : 0) +
+                   ")"
+             : "PASS: the arm matches its stored calibration (nothing was written)";
   }
   char t[64];
   std::snprintf(t, sizeof t, "%.1f s of bus time", out.bus_time_s);
@@ -171,7 +183,11 @@ CommandOutcome Measure(ToolSession& s, int arm, const CalibrateRequest& request,
 
 }  // namespace
 
-CommandOutcome Calibrate(ToolSession& s, int arm, const CalibrateRequest& request) { return Measure(s, arm, request, true); }
-CommandOutcome Verify(ToolSession& s, int arm, const CalibrateRequest& request) { return Measure(s, arm, request, false); }
+CommandOutcome Calibrate(ToolSession& s, int arm, const CalibrateRequest& request) {
+  return Measure(s, arm, request, true);
+}
+CommandOutcome Verify(ToolSession& s, int arm, const CalibrateRequest& request) {
+  return Measure(s, arm, request, false);
+}
 
 }  // namespace vesica::app::calibrate

@@ -1,11 +1,10 @@
 // vesica-calibrate: the technician's tool for the arms' motor calibration (issue 32), in the
 // manner of moteus_tool and odrivetool. docs/calibration.md is its guide.
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
-
-#include <CLI/CLI.hpp>
 
 #include "app/calibrate/commands.h"
 #include "app/calibrate/exit_codes.h"
@@ -40,10 +39,11 @@ int main(int argc, char** argv) {
   app.add_option("--udp-base-port", options.bus.udp_base_port,
                  "arm n listens on this + 2(n-1), the tool on the port above (as the trainer)")
       ->check(CLI::Range(1, 65531));
-  app.add_option("--emulated", emulated_seed,
-                 "in-process emulated random arms (arm n: seed + n - 1, seed >= 1), in bus time: for training and tests")
-      ->check(CLI::Validator([](std::string& v) { return v == "0" ? std::string("the seed is 1 or more") : std::string(); },
-                             "SEED >= 1"));
+  app.add_option(
+         "--emulated", emulated_seed,
+         "in-process emulated random arms (arm n: seed + n - 1, seed >= 1), in bus time: for training and tests")
+      ->check(CLI::Validator(
+          [](std::string& v) { return v == "0" ? std::string("the seed is 1 or more") : std::string(); }, "SEED >= 1"));
   app.add_flag("--json", json, "print one JSON document (stable keys) on stdout");
   app.add_flag("-y,--yes", yes, "answer yes to the prompt before an arm moves (scripts)");
   app.add_flag("-q,--quiet", quiet, "no progress or notes on stderr");
@@ -62,7 +62,8 @@ int main(int argc, char** argv) {
   std::string joint, step;
   calibrate->add_option("--joint", joint, "one joint only: yaw, pitch or insertion");
   calibrate->add_option("--step", step, "this step only (the others keep the stored values): " + c::StepNames());
-  CLI::App* verify = app.add_subcommand("verify", "measure again and compare with the stored calibration (the arm moves)");
+  CLI::App* verify =
+      app.add_subcommand("verify", "measure again and compare with the stored calibration (the arm moves)");
   verify->add_option("ARM", arm_name, "1 (left) or 2 (right)")->required();
   verify->add_option("--joint", joint, "one joint only: yaw, pitch or insertion");
   CLI::App* restore = app.add_subcommand("restore", "put a stored calibration back in force");
@@ -118,8 +119,10 @@ int main(int argc, char** argv) {
   }
   c::CalibrateRequest request;
   if (!joint.empty()) {
-    const int j = joint == "yaw" || joint == "0" ? 0 : joint == "pitch" || joint == "1" ? 1
-                  : joint == "insertion" || joint == "2" ? 2 : -1;
+    const int j = joint == "yaw" || joint == "0"         ? 0
+                  : joint == "pitch" || joint == "1"     ? 1
+                  : joint == "insertion" || joint == "2" ? 2
+                                                         : -1;
     if (j < 0) return usage(c::kExitUsage, "unknown joint '" + joint + "': yaw, pitch or insertion");
     request.joints = 1u << j;
   }
@@ -134,16 +137,21 @@ int main(int argc, char** argv) {
   c::ToolSession session(options, ui, &g_interrupted);
   c::CommandOutcome o;
   try {
-    if (command == scan) o = c::Scan(session);
-    else if (command == info) o = c::Info(session, arm);
-    else if (command == calibrate) o = c::Calibrate(session, arm, request);
-    else if (command == verify) o = c::Verify(session, arm, request);
+    if (command == scan)
+      o = c::Scan(session);
+    else if (command == info)
+      o = c::Info(session, arm);
+    else if (command == calibrate)
+      o = c::Calibrate(session, arm, request);
+    else if (command == verify)
+      o = c::Verify(session, arm, request);
     else if (command == restore) {
       c::RestoreRequest r;
       r.file = file;
       if (!slot.empty()) r.slot = (slot == "A" || slot == "a") ? 0 : 1;
       o = c::Restore(session, arm, r);
-    } else if (command == report) o = c::Report(session, arm);
+    } else if (command == report)
+      o = c::Report(session, arm);
   } catch (const std::exception& e) {
     o = c::ToolSession::Failure(c::kExitInternal, std::string("internal error: ") + e.what());
   }

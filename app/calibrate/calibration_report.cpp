@@ -47,10 +47,14 @@ namespace {
 std::string Escape(const std::string& s) {
   std::string o;
   for (char c : s) {
-    if (c == '<') o += "&lt;";
-    else if (c == '>') o += "&gt;";
-    else if (c == '&') o += "&amp;";
-    else o += c;
+    if (c == '<')
+      o += "&lt;";
+    else if (c == '>')
+      o += "&gt;";
+    else if (c == '&')
+      o += "&amp;";
+    else
+      o += c;
   }
   return o;
 }
@@ -73,9 +77,12 @@ std::string ReportHtml(const json& d) {
   std::string h =
       "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>Vesica arm " + Num(d["arm"]) + " " +
       Name(d["report"]) +
-      "</title>\n<style>body{font-family:sans-serif;margin:2em;max-width:70em}table{border-collapse:collapse;margin:1em 0}"
+      "</"
+      "title>\n<style>body{font-family:sans-serif;margin:2em;max-width:70em}table{border-collapse:collapse;margin:1em "
+      "0}"
       "td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}th{background:#eee}td.l{text-align:left}"
-      ".pass{color:#176b1f;font-weight:bold}.fail{color:#b00;font-weight:bold}img{max-width:100%}</style></head><body>\n";
+      ".pass{color:#176b1f;font-weight:bold}.fail{color:#b00;font-weight:bold}img{max-width:100%}</style></"
+      "head><body>\n";
   const json& n = d["node"];
   h += "<h1>Arm " + Num(d["arm"]) + ": " + Name(d["report"]) + "</h1>\n";
   h += "<p>" + Name(d["date"]) + ", vesica-calibrate " + Name(d["tool"]["version"]) + ", " + Name(d["bus"]) + "</p>\n";
@@ -105,7 +112,8 @@ std::string ReportHtml(const json& d) {
            (c["pass"].get<bool>() ? "pass\">pass" : "fail\">FAIL") + "</td></tr>\n";
     h += "</table>\n";
   }
-  h += "<h2>Stored calibration: before and after</h2>\n<table><tr><th>joint</th><th>value</th><th>before</th><th>after</th>"
+  h += "<h2>Stored calibration: before and "
+       "after</h2>\n<table><tr><th>joint</th><th>value</th><th>before</th><th>after</th>"
        "<th>change</th></tr>\n";
   for (const auto& [joint, values] : d["before"].items()) {
     for (const auto& [key, value] : values.items()) {
@@ -121,10 +129,12 @@ std::string ReportHtml(const json& d) {
     const json& f = d["files"];
     if (f.contains("friction_png"))
       h += "<h2>Friction fit</h2>\n<p>Mean torque of each constant-velocity sweep (dots) and the fitted Coulomb + "
-           "viscous line.</p><img src=\"" + Name(f["friction_png"]) + "\" alt=\"friction fit\">\n";
+           "viscous line.</p><img src=\"" +
+           Name(f["friction_png"]) + "\" alt=\"friction fit\">\n";
     if (f.contains("range_png"))
       h += "<h2>Range sweep</h2>\n<p>Joint positions through the range step (the node's frame at the time) and the "
-           "stops they came to rest on (dashed).</p><img src=\"" + Name(f["range_png"]) + "\" alt=\"range sweep\">\n";
+           "stops they came to rest on (dashed).</p><img src=\"" +
+           Name(f["range_png"]) + "\" alt=\"range sweep\">\n";
     h += "<h2>Files</h2>\n<ul>";
     for (const auto& [key, value] : f.items()) h += "<li>" + key + ": " + Name(value) + "</li>";
     h += "</ul>\n";

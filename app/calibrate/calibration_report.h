@@ -3,10 +3,9 @@
 // friction fit and range sweep plots (PNG) and the files that go with it (image copy, bus log).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "app/calibrate/calibration_run.h"
 #include "app/calibrate/stored_calibration.h"
@@ -18,7 +17,7 @@ struct ReportInput {
   std::string kind = "calibration";  ///< "calibration", "verification", "stored calibration"
   int arm = 0;
   unsigned joints = 0b111;
-  device::calibration::NodeInfo info;                   ///< before
+  device::calibration::NodeInfo info;  ///< before
   std::optional<device::calibration::NodeInfo> info_after;
   CalibrationValues before;
   std::optional<CalibrationValues> after;

@@ -14,12 +14,24 @@ namespace {
 
 void RunStep(Step s, cal::StepContext& ctx) {
   switch (s) {
-    case Step::kCurrentOffset: cal::MeasureCurrentOffsets(ctx); break;
-    case Step::kEncoderDirection: cal::FindEncoderDirections(ctx); break;
-    case Step::kRange: cal::FindRangeAndZero(ctx); break;
-    case Step::kIndex: cal::FindReferenceIndex(ctx); break;
-    case Step::kFriction: cal::IdentifyFriction(ctx); break;
-    case Step::kGravity: cal::IdentifyGravity(ctx); break;
+    case Step::kCurrentOffset:
+      cal::MeasureCurrentOffsets(ctx);
+      break;
+    case Step::kEncoderDirection:
+      cal::FindEncoderDirections(ctx);
+      break;
+    case Step::kRange:
+      cal::FindRangeAndZero(ctx);
+      break;
+    case Step::kIndex:
+      cal::FindReferenceIndex(ctx);
+      break;
+    case Step::kFriction:
+      cal::IdentifyFriction(ctx);
+      break;
+    case Step::kGravity:
+      cal::IdentifyGravity(ctx);
+      break;
   }
 }
 
@@ -94,7 +106,8 @@ RunOutcome RunCalibration(cal::CalibrationLink& link, BusObserver& bus, const Ru
     if (!request.save || o.out_of_tolerance) {
       link.AbortSession();  // unsaved: the node reloads the stored calibration
       if (o.out_of_tolerance) {
-        o.result.message = "a measured value is out of tolerance; nothing was saved, the stored calibration is in force";
+        o.result.message =
+            "a measured value is out of tolerance; nothing was saved, the stored calibration is in force";
         o.result.failed_step = "check";
       }
     } else {

@@ -1,10 +1,10 @@
 // One arm's measurement run: the core's steps (device/calibration/calibration_step.h) in order
 // inside the node's calibration session, then, when asked and when every check passes, the
-// results written and saved. Unlike ArmCalibrator it can judge
-// the numbers before anything is stored (a calibration out of tolerance is never saved) and
-// measure without saving at all (verify).
-// Steps left out keep what the node has, and the steps run start from it (LoadNodeCalibration). Any abort ends the session unsaved: the node zeroes
-// the currents and reloads its stored calibration.
+// results written and saved. Unlike ArmCalibrator it judges the numbers before anything is stored
+// (a calibration out of tolerance is never saved) and can measure without saving (verify). Steps
+// left out keep what the node has, and the steps that run start from it (LoadNodeCalibration).
+// Any abort ends the session unsaved: the node zeroes the currents and reloads its stored
+// calibration.
 #pragma once
 
 #include <atomic>
@@ -31,12 +31,12 @@ struct RunRequest {
 
 struct RunOutcome {
   device::calibration::CalibrationResult result;
-  std::vector<Step> steps;                 ///< that ran to their end
-  std::vector<double> step_bus_time_s;     ///< each one's duration on the bus clock
-  std::vector<Check> checks;               ///< the judge's
-  bool out_of_tolerance = false;           ///< measured fully but a check failed: not saved
-  std::vector<PositionSample> range_sweep; ///< joint positions during the range step
-  double bus_time_s = 0.0;                 ///< from connect to the end
+  std::vector<Step> steps;                  ///< that ran to their end
+  std::vector<double> step_bus_time_s;      ///< each one's duration on the bus clock
+  std::vector<Check> checks;                ///< the judge's
+  bool out_of_tolerance = false;            ///< measured fully but a check failed: not saved
+  std::vector<PositionSample> range_sweep;  ///< joint positions during the range step
+  double bus_time_s = 0.0;                  ///< from connect to the end
 };
 
 RunOutcome RunCalibration(device::calibration::CalibrationLink& link, BusObserver& bus, const RunRequest& request);

@@ -12,9 +12,9 @@ enum class Step { kCurrentOffset, kEncoderDirection, kRange, kIndex, kFriction, 
 
 struct StepInfo {
   Step step;
-  const char* name;        ///< as on the command line and in the core's progress ("current offset")
-  const char* motion;      ///< what moves, for the prompt; null: nothing moves
-  double typical_s;        ///< bus time on the emulated arms, all three joints
+  const char* name;    ///< as on the command line and in the core's progress ("current offset")
+  const char* motion;  ///< what moves, for the prompt; null: nothing moves
+  double typical_s;    ///< bus time on the emulated arms, all three joints
 };
 
 const std::vector<StepInfo>& AllSteps();

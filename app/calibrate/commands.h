@@ -16,7 +16,7 @@ CommandOutcome Scan(ToolSession& s);
 CommandOutcome Info(ToolSession& s, int arm);
 
 struct CalibrateRequest {
-  unsigned joints = 0b111;          ///< --joint: one bit
+  unsigned joints = 0b111;                  ///< --joint: one bit
   std::vector<Step> steps = AllStepList();  ///< --step: that one only (the rest as stored)
   double max_current_A = 0.6;
 };

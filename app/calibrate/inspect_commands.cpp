@@ -50,9 +50,8 @@ CommandOutcome Scan(ToolSession& s) {
     // Ctrl-C ends the scan; an arm that fails is listed and the scan goes on.
     if (failure.exit_code == kExitIo || s.aborted()) return failure;
     if (failure.exit_code == kExitProtocolTooOld) ++too_old;
-    arms.push_back({{"arm", arm},
-                    {"found", failure.exit_code == kExitProtocolTooOld},
-                    {"error", failure.json["error"]}});
+    arms.push_back(
+        {{"arm", arm}, {"found", failure.exit_code == kExitProtocolTooOld}, {"error", failure.json["error"]}});
     o.text += "arm " + std::to_string(arm) + ": " + failure.json["error"]["message"].get<std::string>() + "\n";
   }
   o.json = {{"command", "scan"}, {"bus", Describe(s.options().bus)}, {"arms", arms}};

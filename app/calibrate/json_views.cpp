@@ -67,10 +67,14 @@ json ToJson(const CalibrationValues& v) {
   json j;
   for (int k = 0; k < 3; ++k) {
     const auto& o = v.joint[k];
-    j[JointName(k)] = {{"direction", o.direction},         {"position_offset", o.position_offset},
-                       {"current_offset_A", o.current_offset_A}, {"joint_min", o.joint_min},
-                       {"joint_max", o.joint_max},         {"index_position", o.index_position},
-                       {"coulomb", o.coulomb},             {"viscous", o.viscous}};
+    j[JointName(k)] = {{"direction", o.direction},
+                       {"position_offset", o.position_offset},
+                       {"current_offset_A", o.current_offset_A},
+                       {"joint_min", o.joint_min},
+                       {"joint_max", o.joint_max},
+                       {"index_position", o.index_position},
+                       {"coulomb", o.coulomb},
+                       {"viscous", o.viscous}};
   }
   j["pitch"]["gravity_sin"] = v.gravity_sin;
   j["pitch"]["gravity_cos"] = v.gravity_cos;
@@ -80,7 +84,8 @@ json ToJson(const CalibrationValues& v) {
 json ToJson(const std::vector<Check>& checks) {
   json a = json::array();
   for (const Check& c : checks)
-    a.push_back({{"name", c.name}, {"unit", c.unit}, {"value", c.value}, {"min", c.lo}, {"max", c.hi}, {"pass", c.pass}});
+    a.push_back(
+        {{"name", c.name}, {"unit", c.unit}, {"value", c.value}, {"min", c.lo}, {"max", c.hi}, {"pass", c.pass}});
   return a;
 }
 
@@ -104,7 +109,8 @@ json ToJson(const cal::CalibrationResult& r) {
   }
   json holds = json::array();
   for (const auto& h : r.gravity_holds)
-    holds.push_back({{"angle_rad", h.angle_rad}, {"breakaway_up", h.breakaway_up}, {"breakaway_down", h.breakaway_down}});
+    holds.push_back(
+        {{"angle_rad", h.angle_rad}, {"breakaway_up", h.breakaway_up}, {"breakaway_down", h.breakaway_down}});
   j["gravity"] = {{"sin", r.gravity_sin}, {"cos", r.gravity_cos}, {"holds", holds}};
   j["saved"] = r.saved;
   j["abort"] = cal::ToString(r.abort);

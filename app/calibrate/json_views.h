@@ -1,9 +1,8 @@
 // The JSON and text forms of what the commands read from a node (stable keys: scripts read them).
 #pragma once
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "app/calibrate/acceptance.h"
 #include "app/calibrate/bus_observer.h"

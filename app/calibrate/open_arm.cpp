@@ -30,9 +30,10 @@ bool OpenArm(ToolSession& s, int arm, OpenedArm* out, CommandOutcome* failure) {
   } catch (const cal::CalibrationAbort& e) {
     *failure = AbortOutcome(e, "connect", arm);
     if (e.reason() == cal::AbortReason::kNoAnswer)
-      *failure = ToolSession::Failure(kExitNoArm, "arm " + std::to_string(arm) + ": no answer from " + s.where(arm) +
-                                                      " (is the arm powered and on this bus?)",
-                                      {{"arm", arm}});
+      *failure = ToolSession::Failure(
+          kExitNoArm,
+          "arm " + std::to_string(arm) + ": no answer from " + s.where(arm) + " (is the arm powered and on this bus?)",
+          {{"arm", arm}});
     return false;
   }
   out->text = "arm " + std::to_string(arm) + " (node " + std::to_string(out->info.identity.node) + ", serial " +

@@ -37,7 +37,8 @@ CommandOutcome Report(ToolSession& s, int arm) {
   std::string error;
   const std::string stem = "arm" + std::to_string(arm) + "-stored";
   if (a.info.active_slot >= 0) {
-    if (!WriteImageFile(s.session_dir() + "/" + stem + ".vcal", image, &error)) return ToolSession::Failure(kExitIo, error);
+    if (!WriteImageFile(s.session_dir() + "/" + stem + ".vcal", image, &error))
+      return ToolSession::Failure(kExitIo, error);
     doc["files"]["image_stored"] = stem + ".vcal";
   }
   ReportFiles files;
@@ -47,9 +48,10 @@ CommandOutcome Report(ToolSession& s, int arm) {
   o.json["command"] = "report";
   o.json["ok"] = true;
   o.json["session_dir"] = s.session_dir();
-  o.text = a.text + ": " + (a.info.active_slot < 0 ? "no stored calibration (defaults in force)"
-                                                   : "calibration of " + DateText(a.info.calibration_date_s) +
-                                                         " in slot " + SlotName(a.info.active_slot)) +
+  o.text = a.text + ": " +
+           (a.info.active_slot < 0 ? "no stored calibration (defaults in force)"
+                                   : "calibration of " + DateText(a.info.calibration_date_s) + " in slot " +
+                                         SlotName(a.info.active_slot)) +
            "\n" + ValuesText(in.before) + "report: " + files.html + "\n";
   return o;
 }

@@ -6,8 +6,8 @@
 #include <QPainter>
 #include <QPainterPath>
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <memory>
 
@@ -107,7 +107,8 @@ QImage Canvas(std::size_t panels, std::vector<QRectF>* boxes) {
   const int w = 380, h = 320;
   QImage image(static_cast<int>(std::max<std::size_t>(panels, 1)) * w, h, QImage::Format_RGB32);
   image.fill(Qt::white);
-  for (std::size_t k = 0; k < panels; ++k) boxes->push_back(QRectF(static_cast<double>(k) * w + 85, 35, w - 105, h - 90));
+  for (std::size_t k = 0; k < panels; ++k)
+    boxes->push_back(QRectF(static_cast<double>(k) * w + 85, 35, w - 105, h - 90));
   return image;
 }
 
@@ -124,7 +125,9 @@ bool PlotFrictionFit(const device::calibration::CalibrationResult& r, unsigned j
   for (std::size_t k = 0; k < js.size(); ++k) {
     const int j = js[k];
     const auto& c = r.joint[j];
-    const auto fit = [&](double v) { return c.friction_offset + c.coulomb * (v > 0 ? 1 : v < 0 ? -1 : 0) + c.viscous * v; };
+    const auto fit = [&](double v) {
+      return c.friction_offset + c.coulomb * (v > 0 ? 1 : v < 0 ? -1 : 0) + c.viscous * v;
+    };
     Panel panel{boxes[k], {}, {}};
     double vmax = 1e-9, tmin = 1e30, tmax = -1e30;
     for (const auto& s : c.friction_segments) {
@@ -138,8 +141,9 @@ bool PlotFrictionFit(const device::calibration::CalibrationResult& r, unsigned j
     panel.y = {tmin, tmax};
     panel.y.Pad();
     const bool rotary = j < 2;
-    panel.DrawAxes(p, QString("%1: Coulomb %2, viscous %3").arg(JointName(j)).arg(c.coulomb, 0, 'g', 3).arg(c.viscous, 0, 'g', 3),
-                   rotary ? "velocity (rad/s)" : "velocity (m/s)", rotary ? "torque (N m)" : "force (N)");
+    panel.DrawAxes(
+        p, QString("%1: Coulomb %2, viscous %3").arg(JointName(j)).arg(c.coulomb, 0, 'g', 3).arg(c.viscous, 0, 'g', 3),
+        rotary ? "velocity (rad/s)" : "velocity (m/s)", rotary ? "torque (N m)" : "force (N)");
     p.setClipRect(panel.box);
     // The fit: two straight branches with the Coulomb step at zero.
     p.setPen(QPen(QColor(200, 60, 40), 2));
@@ -176,8 +180,9 @@ bool PlotRangeSweep(const std::vector<PositionSample>& sweep, unsigned joints, c
     Panel panel{boxes[k], {0.0, std::max(t1 - t0, 1e-3)}, {lo, hi}};
     panel.y.Pad();
     const bool rotary = j < 2;
-    panel.DrawAxes(p, QString("%1: %2 %3 between the stops").arg(JointName(j)).arg(hi - lo, 0, 'g', 4).arg(rotary ? "rad" : "m"),
-                   "time in the step (s)", rotary ? "position (rad)" : "position (m)");
+    panel.DrawAxes(
+        p, QString("%1: %2 %3 between the stops").arg(JointName(j)).arg(hi - lo, 0, 'g', 4).arg(rotary ? "rad" : "m"),
+        "time in the step (s)", rotary ? "position (rad)" : "position (m)");
     p.setClipRect(panel.box);
     p.setPen(QPen(QColor(200, 60, 40), 1, Qt::DashLine));
     p.drawLine(panel.Px(0, lo), panel.Px(t1 - t0, lo));
@@ -185,8 +190,10 @@ bool PlotRangeSweep(const std::vector<PositionSample>& sweep, unsigned joints, c
     QPainterPath path_line;
     for (std::size_t i = 0; i < sweep.size(); ++i) {
       const QPointF q = panel.Px(sweep[i].t_s - t0, sweep[i].position[j]);
-      if (i == 0) path_line.moveTo(q);
-      else path_line.lineTo(q);
+      if (i == 0)
+        path_line.moveTo(q);
+      else
+        path_line.lineTo(q);
     }
     p.setPen(QPen(QColor(30, 90, 180), 1.5));
     p.drawPath(path_line);

@@ -36,27 +36,29 @@ CommandOutcome Restore(ToolSession& s, int arm, const RestoreRequest& request) {
       return ToolSession::Failure(kExitUsage, who + ": slot " + SlotName(slot) + " is already in force; nothing to do",
                                   {{"arm", arm}});
     if (info.slot_status[k] != fp::StorageResult::Ok)
-      return ToolSession::Failure(kExitStorage, who + ": slot " + SlotName(slot) + " is " +
-                                                    cal::NodeInfo::SlotText(info.slot_status[k]) +
-                                                    "; nothing was written (restore from a report's image with --file)",
+      return ToolSession::Failure(kExitStorage,
+                                  who + ": slot " + SlotName(slot) + " is " +
+                                      cal::NodeInfo::SlotText(info.slot_status[k]) +
+                                      "; nothing was written (restore from a report's image with --file)",
                                   {{"arm", arm}});
     source = s.image_archive() + "/serial-" + SerialText(info.identity.serial).substr(2) + "-gen-" +
              std::to_string(info.slot_generation[k]) + ".vcal";
     ImageFileCheck c = ReadImageFile(source);
     if (c.exit_code == kExitIo)
-      return ToolSession::Failure(kExitStorage, who + ": no local copy of slot " + SlotName(slot) + " (generation " +
-                                                    std::to_string(info.slot_generation[k]) + ") in " +
-                                                    s.image_archive() +
-                                                    "; the node cannot send a slot's contents, use --file with the "
-                                                    "image beside that calibration's report; nothing was written",
+      return ToolSession::Failure(kExitStorage,
+                                  who + ": no local copy of slot " + SlotName(slot) + " (generation " +
+                                      std::to_string(info.slot_generation[k]) + ") in " + s.image_archive() +
+                                      "; the node cannot send a slot's contents, use --file with the "
+                                      "image beside that calibration's report; nothing was written",
                                   {{"arm", arm}});
     if (c.exit_code != kExitOk) return ToolSession::Failure(c.exit_code, c.message, {{"arm", arm}});
     image = std::move(c.image);
   }
   if (image.header.serial != info.identity.serial)
-    return ToolSession::Failure(kExitStorage, who + ": " + source + " is the calibration of serial " +
-                                                  SerialText(image.header.serial) + ", this arm is serial " +
-                                                  SerialText(info.identity.serial) + "; nothing was written",
+    return ToolSession::Failure(kExitStorage,
+                                who + ": " + source + " is the calibration of serial " +
+                                    SerialText(image.header.serial) + ", this arm is serial " +
+                                    SerialText(info.identity.serial) + "; nothing was written",
                                 {{"arm", arm}});
   CommandOutcome o;
   try {
@@ -75,10 +77,16 @@ CommandOutcome Restore(ToolSession& s, int arm, const RestoreRequest& request) {
                             std::to_string(after.header.generation) + ".vcal",
                         after, &error))
       return ToolSession::Failure(kExitIo, error);
-    o.json = {{"command", "restore"}, {"arm", arm}, {"ok", true}, {"source", source},
-              {"restored_generation", image.header.generation}, {"restored_date", DateText(image.header.date_s)},
-              {"before", ToJson(ValuesOf(before.params))}, {"after", ToJson(ValuesOf(after.params))},
-              {"node_after", ToJson(after_info, nullptr)}, {"image_stored", copy}};
+    o.json = {{"command", "restore"},
+              {"arm", arm},
+              {"ok", true},
+              {"source", source},
+              {"restored_generation", image.header.generation},
+              {"restored_date", DateText(image.header.date_s)},
+              {"before", ToJson(ValuesOf(before.params))},
+              {"after", ToJson(ValuesOf(after.params))},
+              {"node_after", ToJson(after_info, nullptr)},
+              {"image_stored", copy}};
     o.text = a.text + ": restored the calibration of " + DateText(image.header.date_s) + " from " + source +
              "\nnow in force: slot " + SlotName(after_info.active_slot) + ", generation " +
              std::to_string(after.header.generation) + "\n" + ValuesText(ValuesOf(after.params));

@@ -105,9 +105,15 @@ void WriteToNode(device::calibration::CalibrationLink& link, const StoredImage& 
     if (!spec.persistent || spec.access != fp::ParameterAccess::ReadWrite || spec.index == param::kNodeId) continue;
     const std::uint32_t raw = image.params.u32(spec.index);
     switch (spec.type) {
-      case fp::ParameterType::F32: link.WriteF32(spec.index, fp::bits_f32(raw)); break;
-      case fp::ParameterType::I32: link.WriteI32(spec.index, static_cast<std::int32_t>(raw)); break;
-      default: link.WriteU32(spec.index, raw); break;
+      case fp::ParameterType::F32:
+        link.WriteF32(spec.index, fp::bits_f32(raw));
+        break;
+      case fp::ParameterType::I32:
+        link.WriteI32(spec.index, static_cast<std::int32_t>(raw));
+        break;
+      default:
+        link.WriteU32(spec.index, raw);
+        break;
     }
   }
   link.WriteU32(param::kCalibrationDate_s, image.header.date_s);

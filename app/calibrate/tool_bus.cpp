@@ -16,9 +16,12 @@ namespace emu = fp::emulator;
 
 std::string Describe(const BusSpec& spec) {
   switch (spec.kind) {
-    case BusSpec::Kind::kCan: return "SocketCAN " + spec.can_interface;
-    case BusSpec::Kind::kUdp: return "UDP " + spec.udp_host + ":" + std::to_string(spec.udp_base_port);
-    case BusSpec::Kind::kEmulated: return "emulated arms (seed " + std::to_string(spec.emulated_seed) + ")";
+    case BusSpec::Kind::kCan:
+      return "SocketCAN " + spec.can_interface;
+    case BusSpec::Kind::kUdp:
+      return "UDP " + spec.udp_host + ":" + std::to_string(spec.udp_base_port);
+    case BusSpec::Kind::kEmulated:
+      return "emulated arms (seed " + std::to_string(spec.emulated_seed) + ")";
   }
   return "?";
 }
@@ -102,12 +105,14 @@ emu::ArmEmulator* ToolBus::emulated_arm(int node) {
 
 std::string ToolBus::where(int node) const {
   switch (spec_.kind) {
-    case BusSpec::Kind::kCan: return "node " + std::to_string(node) + " on SocketCAN " + spec_.can_interface;
+    case BusSpec::Kind::kCan:
+      return "node " + std::to_string(node) + " on SocketCAN " + spec_.can_interface;
     case BusSpec::Kind::kUdp:
       return "node " + std::to_string(node) + " on UDP " + spec_.udp_host + ":" +
              std::to_string(spec_.udp_base_port + 2 * (node - 1)) + " (vesica-armsim --node-id " +
              std::to_string(node) + ")";
-    case BusSpec::Kind::kEmulated: return "emulated node " + std::to_string(node);
+    case BusSpec::Kind::kEmulated:
+      return "emulated node " + std::to_string(node);
   }
   return "?";
 }

@@ -20,7 +20,6 @@
 #include "firmware_protocol/transport/virtual_bus.h"
 #include "firmware_protocol/transport/virtual_clock.h"
 
-
 namespace vesica::app::calibrate {
 
 struct BusSpec {

@@ -70,10 +70,13 @@ cal::CalibrationLink* ToolSession::LinkTo(int node, std::string* error) {
     config.loss_timeout = std::chrono::milliseconds(500);
   cal::CalibrationLink*& ptr = link_ptrs_[node];
   auto waiter = bus_.WaiterFor(node, ptr, abort_);
-  auto link = std::make_unique<cal::CalibrationLink>(*t, [this, waiter](fp::Nanoseconds until) {
-    waiter(until);
-    Tick();
-  }, config);
+  auto link = std::make_unique<cal::CalibrationLink>(
+      *t,
+      [this, waiter](fp::Nanoseconds until) {
+        waiter(until);
+        Tick();
+      },
+      config);
   ptr = link.get();
   links_[node] = std::move(link);
   return ptr;

@@ -8,10 +8,9 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "app/calibrate/tool_bus.h"
 #include "app/calibrate/tool_ui.h"
@@ -24,8 +23,8 @@ inline constexpr std::uint32_t kToolVersion = 0x000100;  ///< major << 16 | mino
 
 struct ToolOptions {
   BusSpec bus;
-  std::string data_dir;      ///< empty: DefaultDataDir()
-  std::string log_path;      ///< empty: bus.log in the session folder
+  std::string data_dir;  ///< empty: DefaultDataDir()
+  std::string log_path;  ///< empty: bus.log in the session folder
   std::string command = "scan";
   std::uint32_t date_s = 0;  ///< 0: now (recorded in the stored slot)
 };

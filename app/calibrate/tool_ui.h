@@ -10,7 +10,7 @@ namespace vesica::app::calibrate {
 /// Told before anything moves: which arm, what each step will do, the current limit.
 struct MotionNotice {
   int arm = 0;
-  std::string arm_text;             ///< "arm 1 (node 1, serial 0x5E51CA01)"
+  std::string arm_text;              ///< "arm 1 (node 1, serial 0x5E51CA01)"
   std::vector<std::string> motions;  ///< one line per moving step
   double max_current_A = 0.0;
 };

@@ -35,7 +35,8 @@ std::uint16_t FreeBasePort() {
 
 // A stored calibration of emulated arm 1 (seed 5) in dir: the starting point of several tests.
 void CalibrateOnce(const std::string& dir) {
-  const auto run = RunTool({"--emulated", "5", "--dir", dir, "--yes", "--quiet", "--date", "1790000000", "calibrate", "1"});
+  const auto run =
+      RunTool({"--emulated", "5", "--dir", dir, "--yes", "--quiet", "--date", "1790000000", "calibrate", "1"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
 }
 
@@ -193,8 +194,8 @@ TEST(CalibrateBadInput, ACorruptSlotIsNamedInInfoAndNotRestored) {
   const std::string flash_file = dir + "/emulated/seed-5-arm-1.flash";
   auto flash = ReadBytes(flash_file);
   flash[40] ^= 0x10;
-  std::ofstream(flash_file, std::ios::binary).write(reinterpret_cast<const char*>(flash.data()),
-                                                     static_cast<std::streamsize>(flash.size()));
+  std::ofstream(flash_file, std::ios::binary)
+      .write(reinterpret_cast<const char*>(flash.data()), static_cast<std::streamsize>(flash.size()));
   const auto info = RunTool({"--emulated", "5", "--dir", dir, "info", "1"});
   ASSERT_EQ(info.exit_code, kExitOk) << info.err;
   EXPECT_NE(info.out.find("  slot A: corrupt (bad CRC)\n"), std::string::npos) << info.out;
@@ -217,7 +218,8 @@ TEST(CalibrateBadInput, CtrlCMidStepLeavesTheArmOnItsStoredCalibrationAndWritesN
   const auto run = RunTool({"--emulated", "5", "--dir", dir, "--yes", "calibrate", "1"}, "", "arm 1 range: 0%");
   ASSERT_TRUE(run.interrupted) << run.err;
   EXPECT_EQ(run.exit_code, kExitAborted) << run.err;
-  EXPECT_NE(run.err.find("arm 1: calibration aborted by the user; the stored calibration is in force"), std::string::npos)
+  EXPECT_NE(run.err.find("arm 1: calibration aborted by the user; the stored calibration is in force"),
+            std::string::npos)
       << run.err;
   EXPECT_EQ(ReadBytes(flash_file), flash) << "the arm's flash changed";
   EXPECT_EQ(FilesUnder(dir + "/images"), images);

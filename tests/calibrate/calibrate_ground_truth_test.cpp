@@ -102,7 +102,8 @@ TEST_P(CalibrateGroundTruth, TheReportsNumbersAreTheArmsGroundTruth) {
   EXPECT_EQ(image.image.header.date_s, 1790000000u);
   EXPECT_EQ(image.image.header.serial, r["node"]["serial"].get<std::uint32_t>());
   const CalibrationValues stored = ValuesOf(image.image.params);
-  EXPECT_FLOAT_EQ(static_cast<float>(stored.joint[0].coulomb), static_cast<float>(r["after"]["yaw"]["coulomb"].get<double>()));
+  EXPECT_FLOAT_EQ(static_cast<float>(stored.joint[0].coulomb),
+                  static_cast<float>(r["after"]["yaw"]["coulomb"].get<double>()));
   // The image copy is the node's slot byte for byte: the emulated flash holds it at slot A.
   const auto flash = testing::ReadBytes(dir + "/emulated/seed-" + std::to_string(seed) + "-arm-1.flash");
   ASSERT_GE(flash.size(), image.image.bytes.size());

@@ -74,8 +74,7 @@ TEST(CalibrateLibrary, ThePanelSeesEveryStepAndItsAbortLeavesTheStoredCalibratio
   EXPECT_EQ(o.exit_code, kExitAborted);
   EXPECT_EQ(o.json["error"]["step"], "friction");
   EXPECT_EQ(o.json["error"]["reason"], "abort_requested");
-  EXPECT_EQ(o.json["error"]["message"],
-            "arm 1: calibration aborted by the user; the stored calibration is in force");
+  EXPECT_EQ(o.json["error"]["message"], "arm 1: calibration aborted by the user; the stored calibration is in force");
   // Let the node take the abort frame.
   // A few bus periods for the node to take the abort frame (the link still refuses to go on).
   std::string error;

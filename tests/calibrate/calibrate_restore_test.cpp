@@ -69,8 +69,8 @@ TEST(CalibrateRestore, TheOtherSlotAndAFileComeBackAsTheNewestCalibration) {
   auto other = RunTool({"--emulated", "21", "--dir", dir, "--json", "restore", "2", "--file", file});
   EXPECT_EQ(other.exit_code, kExitStorage);
   EXPECT_EQ(other.json()["error"]["message"], "arm 2: " + file +
-                                                   " is the calibration of serial 0x5E51CA01, this arm is serial "
-                                                   "0x5E51CA02; nothing was written");
+                                                  " is the calibration of serial 0x5E51CA01, this arm is serial "
+                                                  "0x5E51CA02; nothing was written");
 }
 
 }  // namespace

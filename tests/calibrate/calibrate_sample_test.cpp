@@ -10,8 +10,8 @@ namespace {
 
 TEST(CalibrateSample, TheCommittedSampleReportIsWhatTheToolWrites) {
   const std::string dir = testing::FreshDir("sample");
-  const auto run =
-      testing::RunTool({"--emulated", "7", "--dir", dir, "--yes", "--quiet", "--json", "--date", "1790000000", "calibrate", "1"});
+  const auto run = testing::RunTool(
+      {"--emulated", "7", "--dir", dir, "--yes", "--quiet", "--json", "--date", "1790000000", "calibrate", "1"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string session = run.json()["session_dir"].get<std::string>();
   const std::string sample = std::string(VESICA_SOURCE_DIR) + "/docs/calibration/sample/";
