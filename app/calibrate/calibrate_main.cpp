@@ -21,9 +21,7 @@ void OnSigint(int) {
   std::signal(SIGINT, SIG_DFL);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Run(int argc, char** argv) {
   namespace c = vesica::app::calibrate;
   CLI::App app{"vesica-calibrate: find, calibrate, verify and restore the Vesica arms (docs/calibration.md)"};
   app.require_subcommand(1);
@@ -171,4 +169,17 @@ int main(int argc, char** argv) {
     if (session.bus_open()) std::cerr << "bus log: " << session.bus().log_path() << "\n";
   }
   return o.exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vesica-calibrate: internal error: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "vesica-calibrate: internal error\n");
+  }
+  return vesica::app::calibrate::kExitInternal;
 }

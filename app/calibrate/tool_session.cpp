@@ -11,12 +11,14 @@ namespace vesica::app::calibrate {
 
 namespace cal = device::calibration;
 
+// NOLINTBEGIN(concurrency-mt-unsafe): read once, before any thread of the tool starts.
 std::string DefaultDataDir() {
   if (const char* d = std::getenv("VESICA_CALIBRATION_DIR"); d && *d) return d;
   if (const char* x = std::getenv("XDG_DATA_HOME"); x && *x) return std::string(x) + "/vesica/calibration";
   const char* home = std::getenv("HOME");
   return std::string(home && *home ? home : ".") + "/.local/share/vesica/calibration";
 }
+// NOLINTEND(concurrency-mt-unsafe)
 
 std::optional<int> ArmNamed(const std::string& name) {
   if (name == "1" || name == "left") return 1;
