@@ -118,10 +118,14 @@ std::string ReportHtml(const json& d) {
   for (const auto& [joint, values] : d["before"].items()) {
     for (const auto& [key, value] : values.items()) {
       const json after = d["after"].is_null() ? json(nullptr) : d["after"][joint][key];
-      std::string change = "";
+      std::string change;
       if (after.is_number() && value.is_number()) change = Num(after.get<double>() - value.get<double>());
-      h += "<tr><td class=\"l\">" + joint + "</td><td class=\"l\">" + key + "</td><td>" + Num(value) + "</td><td>" +
-           (after.is_null() ? "" : Num(after)) + "</td><td>" + change + "</td></tr>\n";
+      h += "<tr><td class=\"l\">";
+      h += joint;
+      h += "</td><td class=\"l\">";
+      h += key;
+      h += "</td><td>" + Num(value) + "</td><td>" + (after.is_null() ? "" : Num(after)) + "</td><td>" + change +
+           "</td></tr>\n";
     }
   }
   h += "</table>\n";
