@@ -59,8 +59,11 @@ TEST(CalibrateRestore, TheOtherSlotAndAFileComeBackAsTheNewestCalibration) {
   EXPECT_FALSE(verify.json()["saved"].get<bool>());
   EXPECT_EQ(verify.json()["after"], nullptr);
 
-  // report: the calibration in force, with its image copy.
-  auto report = with({"report", "1"});
+  // report: the calibration in force, with its image copy; --log puts the bus log where asked.
+  const std::string log = dir + "-report.log";
+  auto report = with({"--log", log, "report", "1"});
+  EXPECT_EQ(report.json()["bus_log"], log);
+  EXPECT_TRUE(std::filesystem::exists(log));
   ASSERT_EQ(report.exit_code, 0) << report.err;
   EXPECT_EQ(report.json()["before"], second.json()["after"]);
   EXPECT_EQ(report.json()["files"]["image_stored"], "arm1-stored.vcal");
