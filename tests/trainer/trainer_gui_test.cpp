@@ -18,7 +18,6 @@
 #include <QTableWidget>
 #include <QLabel>
 #include <QMouseEvent>
-#include <QSurfaceFormat>
 #include <QTest>
 #include <QWheelEvent>
 #include <filesystem>
@@ -665,14 +664,3 @@ TEST_F(TrainerGuiTest, SigtermMidSessionStoresTheSessionAsUnfinished) {
 
 }  // namespace
 }  // namespace vesica::app
-
-int main(int argc, char** argv) {
-  QSurfaceFormat::setDefaultFormat([] {
-    auto format = QVTKOpenGLNativeWidget::defaultFormat();
-    format.setSamples(0);
-    return format;
-  }());
-  QApplication app(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

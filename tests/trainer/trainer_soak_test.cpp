@@ -9,9 +9,7 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include <QApplication>
 #include <QStatusBar>
-#include <QSurfaceFormat>
 #include <QTest>
 #include <chrono>
 #include <cstdio>
@@ -176,14 +174,3 @@ TEST(TrainerSoakTest, TwentyReplaysWithTheArmsConnectedAndAnArmCrashLoseNothingA
 
 }  // namespace
 }  // namespace vesica::app
-
-int main(int argc, char** argv) {
-  QSurfaceFormat::setDefaultFormat([] {
-    auto format = QVTKOpenGLNativeWidget::defaultFormat();
-    format.setSamples(0);
-    return format;
-  }());
-  QApplication app(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}
