@@ -15,6 +15,29 @@ struct MotionNotice {
   double max_current_A = 0.0;
 };
 
+/// One prompt of a guided hand motion (roll sensor offset, jaw handle span, pedal travel): the
+/// person moves a part of the handle by hand while the sensor's raw value is shown live, then
+/// accepts the value or tries again. Motors are off during these steps.
+struct HandPrompt {
+  int arm = 0;
+  std::string arm_text;      ///< "arm 1 (node 1, serial 0x5E51CA01)"
+  std::string step;          ///< "jaw span", "pedal travel", "roll offset"
+  std::string instruction;   ///< "Move the jaw handle to fully open and hold it there."
+  std::string unit;          ///< the live value's unit: "counts"
+  int prompt_index = 0;      ///< 0-based among the step's prompts (open, then closed: 0, 1)
+  int prompt_count = 1;      ///< how many prompts the step has
+  int attempt = 1;           ///< 1 on the first try, one more on each retry
+  std::string retry_reason;  ///< why the previous try was not taken; "" on the first try
+};
+
+/// What the person answered to a HandPrompt.
+enum class HandAnswer {
+  kWait,    ///< still moving: show the next live value
+  kAccept,  ///< take the live value just shown
+  kRetry,   ///< start the step's prompts again (attempt + 1)
+  kAbort,   ///< stop the command (arm left disabled, previous calibration in force)
+};
+
 class ToolUi {
  public:
   virtual ~ToolUi() = default;
@@ -25,6 +48,16 @@ class ToolUi {
   virtual bool ConfirmMotion(const MotionNotice& notice) = 0;
   /// A line for the person (what is happening, what was found).
   virtual void Note(const std::string& line) = 0;
+  /// Called again and again (about every 20 ms of bus time) while a guided hand step waits for
+  /// the person, with the sensor's latest raw value; the step takes `live_value` on kAccept.
+  /// Must not block for long (the link is serviced between calls): a panel returns kWait until
+  /// a button is pressed. The default, for a UI that cannot show a live value, declines (kAbort):
+  /// the command ends aborted, saying that the step needs a person at an interactive UI.
+  virtual HandAnswer GuideHand(const HandPrompt& prompt, double live_value) {
+    (void)prompt;
+    (void)live_value;
+    return HandAnswer::kAbort;
+  }
 };
 
 /// Every notice answered yes, nothing shown (tests, --yes with --json).
