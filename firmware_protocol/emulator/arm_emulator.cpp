@@ -1,5 +1,7 @@
 #include "firmware_protocol/emulator/arm_emulator.h"
 
+#include "firmware_protocol/emulator/factory_calibration.h"
+
 namespace vesica::fp::emulator {
 namespace {
 
@@ -16,16 +18,7 @@ ArmEmulator::ArmEmulator(Transport& transport, const ArmPlantParameters& params,
       node_(std::make_unique<Node<EmulatedBoard>>(*board_, config.serial)),
       origin_(transport.now()),
       next_tick_(origin_) {
-  if (config.node_id != 1) {
-    // Factory programming: slot A, generation 1, carrying the node id.
-    ParameterStore store;
-    store.write(param::kNodeId, ParameterType::U32, config.node_id);
-    std::uint8_t image[ParameterStore::kImageSize];
-    const std::size_t n = store.serialize(image, sizeof image);
-    std::uint8_t slot_image[slot::kSize];
-    const std::size_t m = encode_slot(SlotHeader{1, 0, 0, config.serial}, image, n, slot_image, sizeof slot_image);
-    board_->storage_write(slot::offset(0), slot_image, m);
-  }
+  ProgramFactoryFlash(*board_, params, q0, config.board.park_position, config.node_id, config.serial);
   node_->boot(Micros(next_tick_));
   Flush(next_tick_);
 }

@@ -26,7 +26,9 @@ class ArmEmulator {
     EmulatedBoard::Config board;
   };
 
-  /// q0: true joint positions at power-up. The node boots at the transport's current time.
+  /// q0: true joint positions at power-up. The flash is programmed as the factory leaves it
+  /// (ProgramFactoryFlash: calibrated when params.factory_calibrated), then the node boots at the
+  /// transport's current time.
   ArmEmulator(Transport& transport, const ArmPlantParameters& params, const Joint4& q0, const Config& config);
 
   /// Steps plant and node up to time t of the transport's clock, handing the node every frame

@@ -53,6 +53,7 @@ ArmGroundTruth RandomArm(std::uint64_t seed) {
   t.seed = seed;
   ArmPlantParameters& p = t.plant;
   p = ArmPlantParameters::Nominal();
+  p.factory_calibrated = false;  // as built: what a calibration has to find is not stored yet
   for (int m = 0; m < 3; ++m) {
     DcMotorParameters& motor = p.motor[m];
     const double n = motor.transmission_ratio;

@@ -46,6 +46,10 @@ struct ArmPlantParameters {
   double board_temperature_degC = 30.0;
   double step_s = 1e-4;                     ///< plant integration step (10 kHz), > 0
   HandParameters hand;
+  /// The arm left the factory calibrated: ArmEmulator programs its flash with the calibration
+  /// that matches these parameters (factory_calibration.h), so the node boots it. False: a board
+  /// nobody calibrated (RandomArm's arms, or an explicitly uncalibrated nominal arm).
+  bool factory_calibrated = true;
 
   /// The nominal arm; device::ArmActuation::Nominal() carries the same motor figures.
   static ArmPlantParameters Nominal();
