@@ -33,6 +33,7 @@
 #include "app/session/arms_standing_by.h"
 #include "app/session/dissection_setup.h"
 #include "app/session/session_recording_file.h"
+#include "app/trainer/calibration_panel.h"
 #include "app/trainer/keyboard_control.h"
 #include "device/input/input_recording.h"
 #include "device/input/replay_input.h"
@@ -100,6 +101,8 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
   QMenu* view_menu = menuBar()->addMenu("&View");
   view_menu->addAction("&Diagnostics overlay (F2)", [this] { diagnostics_->setVisible(!diagnostics_->isVisible()); });
   menuBar()->addAction("&History...", [this] { OpenHistory(); });
+  QMenu* tools = menuBar()->addMenu("&Tools");
+  tools->addAction("&Calibrate arms...", [this] { OpenCalibration(); })->setObjectName("calibrate_arms");
 
   // The session's input: --replay, else what the scenario names (a replay file, haptic arms),
   // else the keyboard; Session > Input switches while running.
@@ -408,6 +411,26 @@ void TrainerWindow::OpenHistory() {
   } catch (const std::exception& e) {
     ShowError(e.what());
   }
+}
+
+void TrainerWindow::OpenCalibration() {
+  // The panel binds the arms' ports (or interface) itself: the session lets go of them first
+  // (keyboard meanwhile) and takes them back when the panel closes.
+  const bool had_arms = input_choice_ == InputChoice::kArms;
+  if (arms_) StartSession(InputChoice::kKeyboard, {});
+  CalibrationPanel* panel = nullptr;
+  try {
+    panel = CalibrationPanel::ForTrainer(scenario_, options_.arms_udp_base_port, this);
+  } catch (const std::exception& e) {
+    ShowError(e.what());
+    if (had_arms) StartSession(InputChoice::kArms, {});
+    return;
+  }
+  panel->setAttribute(Qt::WA_DeleteOnClose);
+  connect(panel, &QDialog::finished, this, [this, had_arms] {
+    if (had_arms) StartSession(InputChoice::kArms, {});
+  });
+  panel->open();  // window-modal: the session's input menu waits until the arms are back
 }
 
 bool TrainerWindow::eventFilter(QObject* watched, QEvent* event) {

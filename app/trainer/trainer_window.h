@@ -102,6 +102,7 @@ class TrainerWindow : public QMainWindow {
   void OnFinished(const RunnerStatus& status, bool unfinished = false);
   void TakeSaveResults();  // the saver's news -> stored_id_, status bar
   void OpenHistory();
+  void OpenCalibration();  // Tools > Calibrate arms: the arms released to the panel while it is open
 
   Scenario scenario_;
   TrainerOptions options_;
