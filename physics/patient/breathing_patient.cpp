@@ -135,7 +135,7 @@ void BreathingPatient::Update(double t_s) {
   double tendon = settings_.tendon_amplitude_m * snapshot_.signal;  // eq. 12
   const double limit = m.diaphragm.max_tendon_displacement_m;
   snapshot_.tendon_limited = std::abs(tendon) > limit;
-  tendon = std::clamp(tendon, -limit, limit);
+  tendon = std::clamp(tendon, -limit * (1.0 - 1e-6), limit * (1.0 - 1e-6));  // float bounds: stay inside
   snapshot_.tendon_displacement_m = tendon;
 
   snapshot_.ribs.resize(m.ribs.size());

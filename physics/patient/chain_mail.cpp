@@ -94,6 +94,7 @@ int ChainMail::Pass(std::span<const int> seeds, int c, bool raise, std::span<Eig
         ++blocked;
         continue;
       }
+      undo_.push_back({half.other, c, ub});
       ub = bound;
       ++moved;
       queue.emplace(sign * ub, half.other);
@@ -112,6 +113,7 @@ ChainMail::MoveReport ChainMail::Move(std::span<const int> drivers, std::span<co
   if (mode == Drivers::kPinned)
     for (int d : drivers) pinned[static_cast<std::size_t>(d)] = 1;
   MoveReport report;
+  undo_.clear();
   std::vector<int> up, down;
   for (int c = 0; c < 3; ++c) {
     up.clear();
@@ -120,10 +122,15 @@ ChainMail::MoveReport ChainMail::Move(std::span<const int> drivers, std::span<co
       double& ud = u[static_cast<std::size_t>(drivers[i])](c);
       if (targets[i](c) > ud) up.push_back(drivers[i]);
       if (targets[i](c) < ud) down.push_back(drivers[i]);
+      undo_.push_back({drivers[i], c, ud});
       ud = targets[i](c);
     }
     report.moved += Pass(up, c, true, u, pinned, report.blocked);
     report.moved += Pass(down, c, false, u, pinned, report.blocked);
+  }
+  if (report.refused()) {  // put everything back, latest first
+    for (auto it = undo_.rbegin(); it != undo_.rend(); ++it) u[static_cast<std::size_t>(it->element)](it->coordinate) = it->value;
+    report.moved = 0;
   }
   return report;
 }

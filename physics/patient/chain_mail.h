@@ -38,13 +38,14 @@ class ChainMail {
 
   /// Joins a to b, b resting at a + step_m. Throws std::invalid_argument for a == b or a zero step.
   void Link(int a, int b, const Eigen::Vector3d& step_m);
-  /// A fixed element never moves; a move that would need it to is reported (MoveReport::blocked).
+  /// A fixed element never moves; a move that would need it to is refused (MoveReport::blocked).
   void Fix(int element);
   [[nodiscard]] bool fixed(int element) const { return fixed_[static_cast<std::size_t>(element)] != 0; }
 
   struct MoveReport {
     int moved = 0;    ///< elements other than the drivers that moved
-    int blocked = 0;  ///< times a fixed element (or a driver) would have had to move
+    int blocked = 0;  ///< times a fixed element (or a pinned driver) would have had to move
+    [[nodiscard]] bool refused() const { return blocked > 0; }  ///< then u is left as it was
   };
   /// kPinned: each driver goes exactly to its target and stays there (the diaphragm's tendon, a
   /// needle's push). kAtLeast: a driver goes at least as far as its target along each coordinate
@@ -77,6 +78,10 @@ class ChainMail {
     Eigen::Vector3d step_m;
   };
   void Finalise() const;  // builds the adjacency on first use after Link()
+  struct Undo {
+    int element, coordinate;
+    double value;
+  };
   int Pass(std::span<const int> seeds, int coordinate, bool raise, std::span<Eigen::Vector3d> u,
            std::span<const std::uint8_t> pinned, int& blocked) const;
 
@@ -87,6 +92,7 @@ class ChainMail {
   mutable std::vector<Half> halves_;
   mutable bool dirty_ = true;
   mutable std::vector<std::uint8_t> pinned_scratch_;
+  mutable std::vector<Undo> undo_;
 };
 
 }  // namespace vesica::physics

@@ -1,5 +1,6 @@
 #include "physics/patient/rib_motion.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
