@@ -82,7 +82,11 @@ vtkSmartPointer<vtkTexture> MakeTissueTexture(int size, std::uint32_t seed) {
   texture->SetColorModeToDirectScalars();
   texture->RepeatOn();
   texture->InterpolateOn();
-  texture->MipmapOn();  // the texture tiles many times across the liver: avoid shimmering
+  // No mipmaps: Mesa's llvmpipe (Debian 12's 22.3, the renderer under Xvfb and on machines without
+  // a GPU) never returns from drawing some screen-space slivers with a mipmapped texture (a
+  // one-triangle reproducer is in docs/development.md). The texture is smooth at the scope's
+  // working distance, so plain linear filtering shimmers little.
+  texture->MipmapOff();
   return texture;
 }
 
