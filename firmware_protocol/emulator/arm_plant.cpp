@@ -87,6 +87,7 @@ void ArmPlant::Step(double dt) {
     motors_[m].Step(dt, setpoint_A_[m], p_.current_sensor_offset_A[m], qd_[j] * p_.motor[m].transmission_ratio);
     effort[j] += motors_[m].joint_effort() - motors_[m].reflected_viscous() * qd_[j];
     coulomb[j] = motors_[m].reflected_coulomb();
+    effort[j] += load_.Effort(m, q_[j]);
   }
   effort[1] += p_.pitch_gravity_sin_Nm * std::sin(q_[1]) + p_.pitch_gravity_cos_Nm * std::cos(q_[1]);
   effort[2] -= p_.roll_viscous_Nm_s_per_rad * qd_[2];

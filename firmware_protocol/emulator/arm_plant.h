@@ -8,6 +8,7 @@
 #include "firmware_protocol/emulator/dc_motor.h"
 #include "firmware_protocol/emulator/hand_model.h"
 #include "firmware_protocol/emulator/incremental_encoder.h"
+#include "firmware_protocol/emulator/reference_load.h"
 
 namespace vesica::fp::emulator {
 
@@ -37,6 +38,8 @@ class ArmPlant {
   /// Current loop setpoints from the firmware, A (yaw, pitch, insertion). Held until changed.
   void SetCurrentSetpoints(const std::array<double, 3>& amps) { setpoint_A_ = amps; }
   void SetHandScript(const HandScript& script) { script_ = script; }
+  /// The torque-constant check's fixture clamped on (or, with attached false, taken off).
+  void SetReferenceLoad(const ReferenceLoad& load) { load_ = load; }
 
   /// Advances the plant by dt_s in steps of at most params.step_s.
   void Advance(double dt_s);
@@ -64,6 +67,7 @@ class ArmPlant {
   std::array<IncrementalEncoder, 3> encoders_;
   std::array<double, 3> setpoint_A_{};
   HandScript script_;
+  ReferenceLoad load_;
   Joint4 q_;
   Joint4 qd_{};
   double time_s_ = 0.0;
