@@ -523,6 +523,42 @@ TEST_F(TrainerGuiTest, ReplayIsStoredAsAReplayAndStaysOffTheLearningCurve) {
   EXPECT_TRUE(history.StatusText().contains("1 replay(s) listed, not plotted")) << history.StatusText().toStdString();
 }
 
+// A physics step of 20 us cannot keep up with the wall clock on any machine (one step of the
+// coupled scene costs far more): the window says how far behind it is while the trainee works,
+// and the record keeps the lag beside the wall-clock duration the trainee lived.
+TEST_F(TrainerGuiTest, PhysicsFallingBehindIsShownAndRecorded) {
+  physics::DissectionModelInputs in = MakeDissectionInputs(*scenario_, *meshes_);
+  in.settings.time_step_s = 2e-5;
+  in.liver_bem.cache_path = BemCachePath(*scenario_).string();
+  const auto slow_model = physics::BuildDissectionModel(in);
+
+  TrainerOptions options;  // real time, the keyboard
+  options.trainee_id = "resident-31";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  auto w = std::make_unique<TrainerWindow>(*scenario_, std::make_unique<LaparoscopeView>(*scenario_, *meshes_),
+                                           slow_model, options);
+  w->resize(800, 450);
+  w->show();
+  auto* lag = w->findChild<QLabel*>("physics_lag");
+  ASSERT_NE(lag, nullptr);
+  MoveGrasper(*w);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return lag->isVisible(); }, 20000)) << "no lag shown";
+  EXPECT_TRUE(lag->text().startsWith("physics behind real time by ")) << lag->text().toStdString();
+  QTest::qWait(500);
+  QTest::keyClick(w->findChild<QVTKOpenGLNativeWidget*>(), Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return w->stored_session_id().has_value(); }, 30000)) << w->last_error();
+  EXPECT_FALSE(lag->isVisible());  // a finished session is not behind
+
+  auto store = OpenSessionStore(options.records_location);
+  const auto sessions = store->List("resident-31");
+  ASSERT_EQ(sessions.size(), 1u);
+  const SessionRecord& r = sessions[0].record;
+  // The duration is the trainee's wall-clock time; the tissue lived less than a fifth of it.
+  EXPECT_GT(r.metrics.duration_s, 1.0);
+  EXPECT_GT(r.physics_lag_s, 0.8 * r.metrics.duration_s);
+  EXPECT_LT(r.physics_lag_s, r.metrics.duration_s);
+}
+
 TEST(TrainerUnitsTest, HistoryPlotsInTheUnitsOfTheCsvExportAndTheRecordsTool) {
   for (const PlotMetric& plotted : kPlotMetrics) {
     const MetricDisplayUnit* unit = FindMetricDisplayUnit(plotted.key);
