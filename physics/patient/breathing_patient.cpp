@@ -93,10 +93,68 @@ void BreathingPatient::MoveLiver() {
   }
   const ChainMail::MoveReport report = liver.mail->Move(drivers_, targets_, u_liver_, ChainMail::Drivers::kAtLeast);
   snapshot_.blocked += report.blocked;
+  LiverLiftsDiaphragm();
+  KeepLiverUnderDiaphragm();
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < drivers_.size(); ++i)
     force += p.coupling_stiffness_N_per_m * (targets_[i] / share - u_liver_[static_cast<std::size_t>(drivers_[i])]);
   snapshot_.coupling_force_N = force;
+}
+
+void BreathingPatient::LiverLiftsDiaphragm() {
+  // The diaphragm's muscle is passive (seed 4.4): where the liver, pulled up by the tendon, rises
+  // more than the muscle over it, it lifts the muscle. A lift the fixed crura would refuse is not
+  // made; then KeepLiverUnderDiaphragm holds the liver down instead.
+  const LiverModel& liver = model_->liver;
+  const DiaphragmModel& dia = model_->diaphragm;
+  const double tendon_z = u_diaphragm_[static_cast<std::size_t>(dia.tendon.front())].z();
+  lift_.assign(u_diaphragm_.size(), -INFINITY);
+  bool any = false;
+  for (int e = 0; e < liver.lattice.size(); ++e) {
+    const auto ue = static_cast<std::size_t>(e);
+    for (int q = liver.under_first[ue]; q < liver.under_first[ue + 1]; ++q) {
+      const auto d = static_cast<std::size_t>(liver.under_diaphragm[static_cast<std::size_t>(q)]);
+      const double most = std::min(dia.rise_over_crura_m[d], tendon_z + dia.rise_over_tendon_m[d]) - 1e-9;
+      const double need = std::min(most, u_liver_[ue].z() - liver.under_allowance_m[static_cast<std::size_t>(q)]);
+      if (need > u_diaphragm_[d].z() && need > lift_[d]) {
+        lift_[d] = need;
+        any = true;
+      }
+    }
+  }
+  if (!any) return;
+  cap_drivers_.clear();
+  cap_targets_.clear();
+  for (std::size_t d = 0; d < lift_.size(); ++d)
+    if (lift_[d] > -INFINITY) {
+      cap_drivers_.push_back(static_cast<int>(d));
+      cap_targets_.emplace_back(u_diaphragm_[d].x(), u_diaphragm_[d].y(), lift_[d]);
+    }
+  snapshot_.blocked +=
+      dia.mail->Move(cap_drivers_, cap_targets_, u_diaphragm_, ChainMail::Drivers::kAtLeast, dia.held).blocked;
+}
+
+void BreathingPatient::KeepLiverUnderDiaphragm() {
+  // Where the liver's mail carried an element higher than the diaphragm above it allows (under
+  // the muscular part, which rises less than the tendon), it is held there and the mail follows.
+  const LiverModel& liver = model_->liver;
+  std::vector<int>& capped = cap_drivers_;
+  std::vector<Eigen::Vector3d>& caps = cap_targets_;
+  capped.clear();
+  caps.clear();
+  for (int e = 0; e < liver.lattice.size(); ++e) {
+    const auto ue = static_cast<std::size_t>(e);
+    double cap = INFINITY;
+    for (int q = liver.under_first[ue]; q < liver.under_first[ue + 1]; ++q)
+      cap = std::min(cap, u_diaphragm_[static_cast<std::size_t>(liver.under_diaphragm[static_cast<std::size_t>(q)])].z() +
+                              liver.under_allowance_m[static_cast<std::size_t>(q)]);
+    if (u_liver_[ue].z() > cap) {
+      capped.push_back(e);
+      caps.emplace_back(u_liver_[ue].x(), u_liver_[ue].y(), cap);
+    }
+  }
+  if (!capped.empty())
+    snapshot_.blocked += liver.mail->Move(capped, caps, u_liver_, ChainMail::Drivers::kAtLeast).blocked;
 }
 
 void BreathingPatient::PushLiverCapsule() {

@@ -71,6 +71,8 @@ class BreathingPatient {
   void TakeCommands(double t_s);
   void MoveDiaphragm(double tendon_m);
   void MoveLiver();
+  void LiverLiftsDiaphragm();
+  void KeepLiverUnderDiaphragm();
   void PushLiverCapsule();
 
   std::shared_ptr<const BreathingPatientModel> model_;
@@ -82,7 +84,9 @@ class BreathingPatient {
 
   std::vector<Eigen::Vector3d> u_diaphragm_, u_liver_;
   std::vector<Eigen::Vector3d> targets_;
-  std::vector<int> drivers_;
+  std::vector<int> drivers_, cap_drivers_;
+  std::vector<Eigen::Vector3d> cap_targets_;
+  std::vector<double> lift_;
   PatientSnapshot snapshot_;
   TripleBuffer<PatientSnapshot> render_, haptic_;
 };

@@ -35,6 +35,7 @@ DiaphragmModel BuildDiaphragm(const LabelVolume& v, const BreathingPatientParame
   const int n = d.lattice.size();
   std::vector<int> tendon_voxels(static_cast<std::size_t>(n), 0);
   std::vector<std::uint8_t> attached(static_cast<std::size_t>(n), 0);
+  d.pleural.assign(static_cast<std::size_t>(n), 0);
   const auto& dims = v.dims;
   for (int k = 0; k < dims[2]; ++k)
     for (int j = 0; j < dims[1]; ++j)
@@ -43,12 +44,14 @@ DiaphragmModel BuildDiaphragm(const LabelVolume& v, const BreathingPatientParame
         if (!label::IsDiaphragm(l)) continue;
         const auto e = static_cast<std::size_t>(d.lattice.ElementOfVoxel(i, j, k));
         if (l == label::kDiaphragmTendon) ++tendon_voxels[e];
-        for (int dk = -1; dk <= 1 && !attached[e]; ++dk)
+        for (int dk = -1; dk <= 1; ++dk)
           for (int dj = -1; dj <= 1; ++dj)
             for (int di = -1; di <= 1; ++di) {
               const int a = i + di, b = j + dj, c = k + dk;
               if (a < 0 || b < 0 || c < 0 || a >= dims[0] || b >= dims[1] || c >= dims[2]) continue;
-              if (v.At(a, b, c) == label::kSpine) attached[e] = 1;
+              const std::uint8_t around = v.At(a, b, c);
+              if (around == label::kSpine) attached[e] = 1;
+              if (around == label::kLung || around == label::kCostophrenicRecess) d.pleural[e] = 1;
             }
       }
   d.mail = std::make_shared<ChainMail>(n, p.diaphragm_mail);
@@ -65,6 +68,10 @@ DiaphragmModel BuildDiaphragm(const LabelVolume& v, const BreathingPatientParame
   Require(!d.tendon.empty(), "the diaphragm has no central tendon (label " +
                                  std::to_string(label::kDiaphragmTendon) + ")");
   Require(!d.spine_attachment.empty(), "the diaphragm does not touch the spine (its crura are fixed there)");
+  d.rise_over_crura_m = d.mail->SlackFrom(d.spine_attachment, 2, false);
+  d.rise_over_tendon_m = d.mail->SlackFrom(d.tendon, 2, false);
+  d.held = d.tendon;
+  d.held.insert(d.held.end(), d.spine_attachment.begin(), d.spine_attachment.end());
   // How far the tendon may go along z before a fixed element would have to follow.
   d.max_tendon_displacement_m = INFINITY;
   for (bool raise : {true, false}) {
@@ -123,6 +130,17 @@ LiverModel BuildLiver(const LabelVolume& v, const DiaphragmModel& diaphragm, con
     liver.coupling.push_back(std::move(coupling));
   }
   Require(!liver.coupling.empty(), "no liver voxel lies within the coupling threshold of the diaphragm");
+  liver.under_first.push_back(0);
+  for (int e = 0; e < n; ++e) {
+    const Eigen::Vector3d& l = liver.lattice.rest_m[static_cast<std::size_t>(e)];
+    for (int d = 0; d < diaphragm.lattice.size(); ++d) {
+      const Eigen::Vector3d gap = diaphragm.lattice.rest_m[static_cast<std::size_t>(d)] - l;
+      if (!diaphragm.pleural[static_cast<std::size_t>(d)] || gap.z() <= 0.0 || gap.head<2>().norm() >= p.under_radius_m) continue;
+      liver.under_diaphragm.push_back(d);
+      liver.under_allowance_m.push_back(gap.z() - std::min(gap.z(), p.under_clearance_m));
+    }
+    liver.under_first.push_back(static_cast<int>(liver.under_diaphragm.size()));
+  }
   if (tumour_voxels > 0) {
     liver.has_tumour = true;
     liver.tumour_centre_m = tumour_sum / tumour_voxels;
@@ -142,6 +160,8 @@ void ValidateBreathingPatientParameters(const BreathingPatientParameters& p) {
   Require(p.coupling_threshold_m > 0.0, "coupling_threshold_m must be > 0");
   Require(p.coupling_stiffness_N_per_m > 0.0, "coupling_stiffness_N_per_m must be > 0");
   Require(p.liver_support_stiffness_N_per_m >= 0.0, "liver_support_stiffness_N_per_m must be >= 0");
+  Require(p.under_radius_m > 0.0, "under_radius_m must be > 0");
+  Require(p.under_clearance_m >= 0.0, "under_clearance_m must be >= 0");
 }
 
 std::shared_ptr<const BreathingPatientModel> BuildBreathingPatientModel(LabelVolume volume,

@@ -104,7 +104,7 @@ int ChainMail::Pass(std::span<const int> seeds, int c, bool raise, std::span<Eig
 }
 
 ChainMail::MoveReport ChainMail::Move(std::span<const int> drivers, std::span<const Eigen::Vector3d> targets,
-                                      std::span<Eigen::Vector3d> u, Drivers mode) {
+                                      std::span<Eigen::Vector3d> u, Drivers mode, std::span<const int> also_pinned) {
   if (drivers.size() != targets.size()) throw std::invalid_argument("ChainMail move: one target per driver");
   if (u.size() != fixed_.size()) throw std::invalid_argument("ChainMail move: one displacement per element");
   Finalise();
@@ -112,6 +112,7 @@ ChainMail::MoveReport ChainMail::Move(std::span<const int> drivers, std::span<co
   for (std::size_t i = 0; i < fixed_.size(); ++i) pinned[i] = fixed_[i];
   if (mode == Drivers::kPinned)
     for (int d : drivers) pinned[static_cast<std::size_t>(d)] = 1;
+  for (int p : also_pinned) pinned[static_cast<std::size_t>(p)] = 1;
   MoveReport report;
   undo_.clear();
   std::vector<int> up, down;

@@ -54,8 +54,9 @@ class ChainMail {
   enum class Drivers { kPinned, kAtLeast };
   /// Moves each drivers[i] to displacement targets[i] and lets the mail follow. u: the current
   /// displacement of every element (in/out), which must satisfy the bounds on entry.
+  /// also_pinned: elements held for this move only, as if fixed.
   MoveReport Move(std::span<const int> drivers, std::span<const Eigen::Vector3d> targets,
-                  std::span<Eigen::Vector3d> u, Drivers mode = Drivers::kPinned);
+                  std::span<Eigen::Vector3d> u, Drivers mode = Drivers::kPinned, std::span<const int> also_pinned = {});
 
   /// The largest violation of any link's bounds by displacements u (0 when all hold), in metres.
   [[nodiscard]] double WorstViolation_m(std::span<const Eigen::Vector3d> u) const;
