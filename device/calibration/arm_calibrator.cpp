@@ -35,7 +35,8 @@ CalibrationResult ArmCalibrator::Run() {
                  {kStepRange, "range", FindRangeAndZero},
                  {kStepIndex, "index", FindReferenceIndex},
                  {kStepFriction, "friction", IdentifyFriction},
-                 {kStepGravity, "gravity", IdentifyGravity}};
+                 {kStepGravity, "gravity", IdentifyGravity},
+                 {kStepTorqueConstant, "torque constant", CheckTorqueConstants}};
     for (const auto& s : steps) {
       if (!(plan_.steps & s.bit)) continue;
       step = s.name;

@@ -53,7 +53,11 @@ void CalibrationLink::Send(const fp::Message& m) {
 }
 
 void CalibrationLink::WaitPeriod() {
-  next_ = std::max(next_ + config_.period, transport_.now());
+  // A host that fell behind (it stalled) restarts its grid from now instead of bursting commands to
+  // catch up, and still gives the node a period to answer before it judges the link: its own
+  // stall is not a lost arm.
+  next_ += config_.period;
+  if (next_ <= transport_.now()) next_ = transport_.now() + config_.period;
   wait_(next_);
 }
 
@@ -160,6 +164,7 @@ fp::ParameterResponse CalibrationLink::Ask(const fp::ParameterRequest& request) 
 }
 
 NodeIdentity CalibrationLink::Connect() {
+  ReceiveAll();  // a boot-up Identity already waiting (negotiated nothing yet) is not the answer
   identity_seen_ = false;
   Send(fp::Hello{config_.node_id, fp::kProtocolMajor, fp::kProtocolMinor});
   const fp::Nanoseconds until = transport_.now() + config_.reply_timeout;

@@ -16,7 +16,9 @@ enum CalibrationStepBit : std::uint8_t {
   kStepIndex = 1u << 3,
   kStepFriction = 1u << 4,
   kStepGravity = 1u << 5,
-  kAllSteps = 0x3F,
+  kAllSteps = 0x3F,  ///< a whole calibration; the checks below need a fixture and run on request
+  /// Torque constant against the reference load fixture (clamped on for this step alone).
+  kStepTorqueConstant = 1u << 6,
 };
 
 /// How a calibration moves the arm: every motion slow and current-limited. Joint order yaw,
@@ -37,6 +39,10 @@ struct CalibrationPlan {
   std::array<double, 3> range_margin{0.02, 0.02, 0.002};  ///< soft limits inside the stops
   int gravity_angles = 5;                                 ///< static holds of pitch, >= 2
   double gravity_ramp_A_per_s = 0.05;                     ///< current ramp that breaks a hold loose
+  /// The reference load fixture's certified stiffness (printed on it): N m/rad, N m/rad, N/m, > 0.
+  std::array<double, 3> reference_stiffness{0.4, 0.4, 20.0};
+  std::array<double, 3> torque_constant_span{0.25, 0.25, 0.025};  ///< holds within +- this of the centre
+  int torque_constant_holds = 5;                                  ///< per joint, >= 2
   std::uint32_t date_s = 0;                               ///< recorded in the stored slot (Unix time)
   std::uint32_t tool_version = 0x000100;                  ///< major << 16 | minor << 8 | patch
   /// Step name and fraction done (0..1), called as the calibration goes.

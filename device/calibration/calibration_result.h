@@ -23,6 +23,12 @@ struct GravityHold {
   double holding() const { return 0.5 * (breakaway_up + breakaway_down); }
 };
 
+/// One hold against the reference load: where, and the torque it took less gravity's (pitch).
+struct LoadHold {
+  double position = 0.0;  ///< rad or m
+  double torque = 0.0;    ///< N m or N, node torque units
+};
+
 struct JointCalibration {
   int direction = 1;             ///< encoder_direction
   double position_offset = 0.0;  ///< rad or m
@@ -35,6 +41,10 @@ struct JointCalibration {
   double friction_offset = 0.0;  ///< constant term of the fit (pitch: mean gravity of the sweeps)
   double friction_rms = 0.0;     ///< residual of the fit
   std::vector<FrictionSegment> friction_segments;
+  /// Torque-constant check: real torque per node torque unit, i.e. the motor's torque constant
+  /// over the node's torque_constant[j]; 0 when not measured.
+  double torque_constant_ratio = 0.0;
+  std::vector<LoadHold> load_holds;
 };
 
 /// What a calibration found and did.

@@ -51,5 +51,9 @@ void FindReferenceIndex(StepContext& ctx);
 void IdentifyFriction(StepContext& ctx);
 /// Pitch's holding torque from static holds at several angles.
 void IdentifyGravity(StepContext& ctx);
+/// Each joint's real torque per node torque unit from static holds against the reference load
+/// fixture (plan.reference_stiffness): the slope of the holding torque over position is the
+/// spring's stiffness over the ratio. Pitch's gravity (as found or stored) is taken off first.
+void CheckTorqueConstants(StepContext& ctx);
 
 }  // namespace vesica::device::calibration

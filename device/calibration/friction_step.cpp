@@ -11,21 +11,27 @@
 namespace vesica::device::calibration {
 namespace {
 
+// Each commanded torque counts for as long as it stood (until the next command): on a host that
+// stalls, the cycles come unevenly, and a plain mean would weigh a catch-up burst of commands as
+// much as the command that stood through the stall.
 struct Window {
   double lo = 0.0, hi = 0.0;  // position window
-  double torque_sum = 0.0;
+  double torque_time = 0.0;   // integral of the commanded torque over time
   int n = 0;
-  double t0 = 0.0, p0 = 0.0, t1 = 0.0, p1 = 0.0;
+  double t0 = 0.0, p0 = 0.0, t1 = 0.0, p1 = 0.0, last_torque = 0.0;
   void Add(double t, double p, double torque) {
     if (n == 0) {
       t0 = t;
       p0 = p;
+    } else {
+      torque_time += last_torque * (t - t1);
     }
     t1 = t;
     p1 = p;
-    torque_sum += torque;
+    last_torque = torque;
     ++n;
   }
+  double mean_torque() const { return t1 > t0 ? torque_time / (t1 - t0) : 0.0; }
 };
 
 }  // namespace
@@ -87,7 +93,7 @@ void IdentifyFriction(StepContext& ctx) {
                                  "friction: joint " + std::to_string(j) + " sweep too short to measure");
         FrictionSegment s;
         s.velocity = (w[j].p1 - w[j].p0) / (w[j].t1 - w[j].t0);
-        s.torque = w[j].torque_sum / w[j].n;
+        s.torque = w[j].mean_torque();
         ctx.result.joint[j].friction_segments.push_back(s);
       }
       ctx.Progress("friction",

@@ -10,7 +10,8 @@ namespace vesica::fp {
 inline constexpr std::uint8_t kProtocolMajor = 1;
 // Minor 1 adds the host-driven calibration session, the A/B calibration slots and their
 // parameters (docs/protocol.md sections 9 and 11).
-inline constexpr std::uint8_t kProtocolMinor = 1;
+// Minor 2: the calibration session's own watchdog and speed bound (section 11).
+inline constexpr std::uint8_t kProtocolMinor = 2;
 inline constexpr int kJointCount = 3;  // actuated joints per arm: yaw, pitch, insertion
 
 // Node state machine (docs/protocol.md "Node state machine").

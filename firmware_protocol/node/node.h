@@ -30,6 +30,12 @@ class Node {
   static constexpr std::uint32_t kCurrentOffsetSamples = 200;
   static constexpr std::uint64_t kFindIndexTimeout_us = 10'000'000;
   static constexpr float kFindIndexCreepFraction = 0.03f;  // of max_velocity: 0.18 rad/s, 30 mm/s
+  // Protocol 1.2: the calibration session's own command watchdog and speed bound. A session's
+  // motions are slow and current-limited, so a host that stalls (a loaded, non-real-time host) may
+  // leave the last command in force longer than in operation; the speed bound keeps what it can
+  // do in that time small (docs/protocol.md section 11, "Watchdog in a calibration session").
+  static constexpr std::uint32_t kSessionWatchdog_us = 250'000;
+  static constexpr float kSessionSpeedFraction = 0.25f;  // of max_velocity: 1.5 rad/s, 0.25 m/s
 
   Node(Hw& hw, std::uint32_t serial) : hw_(hw), serial_(serial) {}
 
@@ -484,7 +490,10 @@ void Node<Hw>::check_faults(const HardwareSample& s, std::uint64_t now_us) {
   if (faults_.latched() != FaultCode::None) return;
   if (enabled_ || session_open_) {
     const std::uint64_t silent_us = now_us - last_command_us_;
-    if (silent_us > params_.u32(param::kWatchdogTimeout_us)) {
+    // A host that negotiated 1.2 knows the session's watchdog; an older one keeps what it knew.
+    const bool session_watchdog = session_open_ && negotiated_minor_ != 0xFF && negotiated_minor_ >= 2;
+    const std::uint64_t timeout_us = session_watchdog ? kSessionWatchdog_us : params_.u32(param::kWatchdogTimeout_us);
+    if (silent_us > timeout_us) {
       raise(FaultCode::CommandWatchdog, 0xFF, static_cast<std::int16_t>(silent_us / 1000 > 32767 ? 32767 : silent_us / 1000));
       return;
     }
@@ -541,7 +550,8 @@ JointArray Node<Hw>::limited_output(const HardwareSample& s) {
 template <VESICA_NODE_HARDWARE Hw>
 JointArray Node<Hw>::session_output(const HardwareSample& s) {
   // Host-driven calibration: the masked joints get the host's current within the session's
-  // bound; the velocity limit holds. No joint-range limit: the range is what is being measured.
+  // bound; the session's speed bound holds (no current that speeds a joint up beyond it). No
+  // joint-range limit: the range is what is being measured.
   JointArray out{};
   Limiter worst = Limiter::None;
   for (int j = 0; j < kJointCount; ++j) {
@@ -552,7 +562,10 @@ JointArray Node<Hw>::session_output(const HardwareSample& s) {
     const float bound = clampf(session_max_current_, 0, params_.f32(param::kMaxCurrent + jj));
     if (std::fabs(amps) > bound) { amps = std::copysign(bound, amps); worst = Limiter::Current; }
     const float v = s.velocity[j];
-    if (std::fabs(v) > params_.f32(param::kMaxVelocity + jj) && amps * v > 0) { amps = 0; worst = Limiter::Velocity; }
+    if (std::fabs(v) > kSessionSpeedFraction * params_.f32(param::kMaxVelocity + jj) && amps * v > 0) {
+      amps = 0;
+      worst = Limiter::Velocity;
+    }
     out[j] = amps;
   }
   limiter_ = worst;

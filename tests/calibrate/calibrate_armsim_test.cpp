@@ -1,13 +1,18 @@
-// vesica-calibrate against two vesica-armsim processes over UDP, as a technician meets the
-// trainer's emulated arms: scan finds both with identity, versions, state, faults and slots;
-// info reads one; the bus log of the session reads back frame for frame.
+// vesica-calibrate against vesica-armsim processes over UDP, as a technician meets the trainer's
+// emulated arms: scan finds both with identity, versions, state, faults and slots; info reads
+// one; the bus log of the session reads back frame for frame. A whole calibration in real time
+// over UDP finds the random arm's ground truth, the session's watchdog holding on a busy host.
 #include <gtest/gtest.h>
+
+#include <sched.h>
 
 #include <fstream>
 
 #include "../device/armsim_process.h"
 #include "app/calibrate/exit_codes.h"
 #include "firmware_protocol/buslog/bus_log_reader.h"
+#include "firmware_protocol/emulator/arm_ground_truth.h"
+#include "ground_truth_checks.h"
 #include "tool_process.h"
 
 namespace vesica::app::calibrate {
@@ -42,8 +47,8 @@ TEST(CalibrateArmsim, ScanFindsBothArmsWithIdentityVersionsStateFaultsAndSlots) 
     EXPECT_EQ(a["node"], k + 1);
     EXPECT_EQ(a["serial"], 0x5E51CA01u);  // vesica-armsim's board serial
     EXPECT_EQ(a["firmware_version"], "1.0.0");
-    EXPECT_EQ(a["protocol"], "1.1");
-    EXPECT_EQ(a["protocol_negotiated_minor"], 1);
+    EXPECT_EQ(a["protocol"], "1.2");
+    EXPECT_EQ(a["protocol_negotiated_minor"], 2);
     EXPECT_EQ(a["state"], "pre-operational");
     EXPECT_EQ(a["latched_fault"], "none");
     EXPECT_EQ(a["fault_count"], 0);
@@ -86,6 +91,50 @@ TEST(CalibrateArmsim, ScanFindsBothArmsWithIdentityVersionsStateFaultsAndSlots) 
   right.Kill(SIGTERM);
   EXPECT_EQ(left.Finish(nullptr), 0);
   EXPECT_EQ(right.Finish(nullptr), 0);
+}
+
+// Real time over UDP loopback: the tool's servo and the arm's node are processes the scheduler
+// may stall. At normal priority on a busy two-core host the stalls reach 140-450 ms and the
+// servo's sweeps lose their constant speed (docs/protocol.md section 11): the tool and the arm
+// run at SCHED_FIFO priority, as docs/calibration.md tells a technician on a shared host. Where
+// the system refuses real-time priority this test cannot say anything and is skipped (reported
+// as skipped, not passed).
+bool RealTimeAllowed() {
+  sched_param param{};
+  param.sched_priority = 1;
+  if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) return false;
+  param.sched_priority = 0;
+  sched_setscheduler(0, SCHED_OTHER, &param);
+  return true;
+}
+
+TEST(CalibrateArmsim, AWholeCalibrationOverUdpFindsTheGroundTruth) {
+  if (!RealTimeAllowed()) GTEST_SKIP() << "SCHED_FIFO refused here (needs CAP_SYS_NICE)";
+  constexpr std::uint64_t kSeed = 11;
+  const int base = device::testing::FreeArmBasePort();
+  ASSERT_NE(base, 0);
+  device::testing::ArmsimProcess arm;
+  ASSERT_TRUE(arm.Start(VESICA_ARMSIM_PATH, {"--node-id", "1", "--local-port", std::to_string(base), "--random-arm",
+                                             std::to_string(kSeed), "--realtime-priority", "20", "--log-level",
+                                             "error", "--report"}));
+  const std::string dir = testing::FreshDir("armsim-calibrate");
+  testing::ToolRun run;
+  // The arm boots within a moment: a calibration that found no node yet is tried again.
+  for (int attempt = 0; attempt < 10; ++attempt) {
+    run = RunTool({"--udp-base-port", std::to_string(base), "--dir", dir, "--json", "--yes", "--quiet",
+                   "--realtime-priority", "20", "--date", "1790000000", "calibrate", "1"});
+    if (run.exit_code != kExitNoArm) break;
+  }
+  ASSERT_EQ(run.exit_code, kExitOk) << run.err << run.out;
+  const nlohmann::json r = run.json();
+  EXPECT_TRUE(r["saved"].get<bool>());
+  EXPECT_TRUE(r["all_pass"].get<bool>());
+  testing::ExpectMeasuredIsGroundTruth(r["measured"], fp::emulator::RandomArm(kSeed));
+  // The arm went through it without a fault (a watchdog trip would have ended the calibration).
+  arm.Kill(SIGTERM);
+  std::string report;
+  EXPECT_EQ(arm.Finish(&report), 0);
+  EXPECT_NE(report.find("state=pre-operational fault=none"), std::string::npos) << report;
 }
 
 }  // namespace

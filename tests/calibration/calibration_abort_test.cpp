@@ -105,8 +105,8 @@ TEST(CalibrationAbortTest, InterruptedAtARandomMomentOfEachStepLeavesTheStoredCa
                                                                        : "aborted"),
               std::string::npos)
         << r.message;
-    // The node has had time to notice (its watchdog, the abort frame).
-    rig.RunUntil(rig.clock.now() + 200ms);
+    // The node has had time to notice (its 250 ms session watchdog, the abort frame).
+    rig.RunUntil(rig.clock.now() + 300ms);
     EXPECT_FALSE(node.enabled());
     EXPECT_FALSE(node.calibration_session_open());
     EXPECT_EQ(rig.emulator->board().applied_currents(), (fp::JointArray{0, 0, 0}));
