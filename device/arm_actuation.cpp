@@ -40,12 +40,16 @@ std::string_view ToString(ActuationLimit limit) {
 }
 
 MotorCurrentCommand TipForceToMotorCurrents(const ArmJoints& q, const Eigen::Vector3d& f_Tip_T,
-                                            const ArmActuation& actuation) {
+                                            const ArmActuation& actuation, const Eigen::Vector3d& feedforward_A) {
   MotorCurrentCommand cmd;
-  if (!f_Tip_T.allFinite()) {
+  if (!f_Tip_T.allFinite() || !feedforward_A.allFinite()) {
     cmd.scale = 0.0;
     return cmd;
   }
+  const Eigen::Vector3d max_A(actuation.yaw.max_current_A, actuation.pitch.max_current_A,
+                              actuation.insertion.max_current_A);
+  const Eigen::Vector3d ff = feedforward_A.cwiseMax(-max_A).cwiseMin(max_A);
+  const Eigen::Vector3d left_A = max_A - ff.cwiseAbs();
   const Eigen::Vector4d tau = JointEffortsFromTipForce(q, f_Tip_T);
   const Eigen::Vector3d amps(tau[0] / actuation.yaw.EffortPerAmp(),
                              tau[1] / actuation.pitch.EffortPerAmp(),
@@ -60,12 +64,13 @@ MotorCurrentCommand TipForceToMotorCurrents(const ArmJoints& q, const Eigen::Vec
     }
   };
   consider(f_Tip_T.norm(), actuation.max_tip_force_N, ActuationLimit::kTipForce);
-  consider(std::abs(amps[0]), actuation.yaw.max_current_A, ActuationLimit::kYawCurrent);
-  consider(std::abs(amps[1]), actuation.pitch.max_current_A, ActuationLimit::kPitchCurrent);
-  consider(std::abs(amps[2]), actuation.insertion.max_current_A, ActuationLimit::kInsertionCurrent);
+  consider(std::abs(amps[0]), left_A[0], ActuationLimit::kYawCurrent);
+  consider(std::abs(amps[1]), left_A[1], ActuationLimit::kPitchCurrent);
+  consider(std::abs(amps[2]), left_A[2], ActuationLimit::kInsertionCurrent);
 
   cmd.scale = scale;
-  cmd.current_A = scale * amps;
+  cmd.feedforward_A = ff;
+  cmd.current_A = scale * amps + ff;
   cmd.joint_effort = scale * tau;
   cmd.f_rendered_T = scale * f_Tip_T;
   return cmd;

@@ -41,8 +41,9 @@ std::string_view ToString(ActuationLimit limit);
 /// Currents for a tip force, after saturation. The whole force is scaled by one factor so its
 /// direction is kept (a clipped component would push the hand sideways).
 struct MotorCurrentCommand {
-  Eigen::Vector3d current_A = Eigen::Vector3d::Zero();     ///< yaw, pitch, insertion
-  Eigen::Vector4d joint_effort = Eigen::Vector4d::Zero();  ///< yaw, pitch, roll (0), insertion
+  Eigen::Vector3d current_A = Eigen::Vector3d::Zero();     ///< yaw, pitch, insertion: the tip force's and the feed-forward
+  Eigen::Vector3d feedforward_A = Eigen::Vector3d::Zero(); ///< part of current_A that compensates the arm itself
+  Eigen::Vector4d joint_effort = Eigen::Vector4d::Zero();  ///< of the tip force: yaw, pitch, roll (0), insertion
   Eigen::Vector3d f_rendered_T = Eigen::Vector3d::Zero();  ///< the force after scaling, N
   double scale = 1.0;                                       ///< in [0, 1]
   ActuationLimit active_limit = ActuationLimit::kNone;
@@ -50,7 +51,11 @@ struct MotorCurrentCommand {
 
 /// Tip force (trocar frame, N) -> joint efforts by the Jacobian transpose -> motor currents
 /// through transmission ratio and torque constant, saturated. A non-finite force gives zero.
+/// feedforward_A (yaw, pitch, insertion; the arm's friction and gravity compensation,
+/// ArmCalibration) is added after the scaling, clipped to each current limit: the tip force gets
+/// the current left under each limit, so the sum stays within it.
 MotorCurrentCommand TipForceToMotorCurrents(const ArmJoints& q, const Eigen::Vector3d& f_Tip_T,
-                                            const ArmActuation& actuation);
+                                            const ArmActuation& actuation,
+                                            const Eigen::Vector3d& feedforward_A = Eigen::Vector3d::Zero());
 
 }  // namespace vesica::device

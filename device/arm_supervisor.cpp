@@ -39,23 +39,30 @@ void ArmSupervisor::Tick(fp::Nanoseconds now) {
   }
 }
 
-std::string ArmSupervisor::Describe(const ArmSupervisorConfig& config, DeviceStatus status, fp::FaultCode fault,
-                                    bool answered, bool silent_too_long) {
+std::string ArmSupervisor::Describe(const ArmSupervisorConfig& config, const Seen& seen) {
   const std::string head = config.name + ": ";
-  switch (status) {
+  switch (seen.status) {
     case DeviceStatus::kOk:
       return head + "ok";
     case DeviceStatus::kNodeFault:
       return head + "FAULT " +
-             (fault == fp::FaultCode::None ? std::string("(reading the node's fault history)")
-                                           : std::string(fp::to_string(fault)));
+             (seen.fault == fp::FaultCode::None ? std::string("(reading the node's fault history)")
+                                                : std::string(fp::to_string(seen.fault)));
     case DeviceStatus::kLinkLost:
       return head + "link lost";
+    case DeviceStatus::kNotCalibrated: {
+      const std::string node = std::to_string(seen.node_id);
+      const std::string command =
+          config.calibrate_command.empty() ? "vesica-calibrate calibrate " + node : config.calibrate_command;
+      return config.name + " (node " + node + "): no valid calibration" +
+             (seen.calibration_problem.empty() ? "" : " (" + seen.calibration_problem + ")") + "; run `" + command +
+             "`";
+    }
     case DeviceStatus::kConnecting:
-      if (silent_too_long) return head + "no answer from " + (config.link.empty() ? "the node" : config.link);
-      return head + (answered ? "connecting" : "waiting for " + (config.link.empty() ? "the node" : config.link));
+      if (seen.silent_too_long) return head + "no answer from " + (config.link.empty() ? "the node" : config.link);
+      return head + (seen.answered ? "connecting" : "waiting for " + (config.link.empty() ? "the node" : config.link));
     default:
-      return head + std::string(ToString(status));
+      return head + std::string(ToString(seen.status));
   }
 }
 
@@ -64,11 +71,12 @@ ArmReport ArmSupervisor::Report() const {
   r.status = arm_.Status();
   r.fault = r.status == DeviceStatus::kNodeFault ? arm_.node_fault() : fp::FaultCode::None;
   r.link_losses = arm_.link_loss_count();
-  const bool answered = arm_.answered();
+  Seen seen{r.status, r.fault, arm_.answered(), false, arm_.node_id(), arm_.calibration_problem()};
   std::lock_guard lock(mu_);
   r.automatic_fault_resets = automatic_resets_;
   r.requested_fault_resets = requested_resets_;
-  r.text = Describe(config_, r.status, r.fault, answered, silent_too_long_);
+  seen.silent_too_long = silent_too_long_;
+  r.text = Describe(config_, seen);
   return r;
 }
 

@@ -18,13 +18,17 @@ struct ArmReport {
   std::uint32_t automatic_fault_resets = 0;  ///< faults cleared because their cause was gone
   std::uint32_t requested_fault_resets = 0;  ///< faults cleared on the user's command
   /// One line: "left arm: ok", "right arm: FAULT over_current", "right arm: link lost",
-  /// "left arm: no answer from node 1 on UDP 127.0.0.1:20000".
+  /// "left arm: no answer from node 1 on UDP 127.0.0.1:20000", "left arm (node 1): no valid
+  /// calibration (slot A: blank, slot B: blank); run `vesica-calibrate calibrate 1`".
   std::string text;
 };
 
 struct ArmSupervisorConfig {
   std::string name = "arm";  ///< how the view names the arm, e.g. "left arm"
   std::string link;          ///< where its node is, for "no answer" messages, e.g. "node 1 on UDP 127.0.0.1:20000"
+  /// What the technician runs for an arm without a valid calibration; empty: `vesica-calibrate
+  /// calibrate N` (N the node id; the tool's default bus is vesica-armsim's UDP).
+  std::string calibrate_command;
   /// A command-watchdog fault is the host's own doing (its commands stopped: link loss, a stall):
   /// once states arrive again for this long the supervisor sends ResetFault. > 0.
   std::chrono::nanoseconds watchdog_reset_after{std::chrono::milliseconds(200)};
@@ -51,8 +55,15 @@ class ArmSupervisor {
   ArmReport Report() const;
 
  private:
-  static std::string Describe(const ArmSupervisorConfig& config, DeviceStatus status, fp::FaultCode fault,
-                              bool answered, bool silent_too_long);
+  struct Seen {
+    DeviceStatus status;
+    fp::FaultCode fault;
+    bool answered;
+    bool silent_too_long;
+    std::uint8_t node_id;
+    std::string calibration_problem;
+  };
+  static std::string Describe(const ArmSupervisorConfig& config, const Seen& seen);
 
   CanArm& arm_;
   const ArmSupervisorConfig config_;

@@ -12,6 +12,8 @@ namespace {
 
 std::int64_t Ns(fp::Nanoseconds t) { return t.count(); }
 
+constexpr std::int64_t kCalibrationReadSpacing_ns = 2'000'000;
+
 DeviceCapabilities MakeCapabilities(const CanArmConfig& c) {
   DeviceCapabilities caps;
   caps.model_name = c.model_name;
@@ -48,8 +50,9 @@ DeviceStatus CanArm::Open() {
     last_error_ = "CanArmConfig.node_id must be 1..127, got " + std::to_string(config_.node_id);
     return DeviceStatus::kInvalidArgument;
   }
-  if (config_.loss_timeout.count() <= 0 || !(config_.velocity_filter_hz > 0.0) || !(config_.force_ramp_s >= 0.0)) {
-    last_error_ = "CanArmConfig: loss_timeout, velocity_filter_hz must be > 0, force_ramp_s >= 0";
+  if (config_.loss_timeout.count() <= 0 || !(config_.velocity_filter_hz > 0.0) || !(config_.force_ramp_s >= 0.0) ||
+      config_.calibration_recheck.count() <= 0) {
+    last_error_ = "CanArmConfig: loss_timeout, velocity_filter_hz, calibration_recheck must be > 0, force_ramp_s >= 0";
     return DeviceStatus::kInvalidArgument;
   }
   // The node refuses a watchdog outside its parameter range and keeps its own (3 ms), which a
@@ -64,6 +67,8 @@ DeviceStatus CanArm::Open() {
   }
   link_ = LinkMonitor(config_.loss_timeout.count());
   state_sequence_.reset();
+  calibration_reader_.Restart();
+  calibration_read_ns_ = -1;
   negotiated_ = false;
   watchdog_configured_ = config_.node_watchdog_timeout.count() == 0;
   node_enabled_ = false;
@@ -88,6 +93,7 @@ DeviceStatus CanArm::StatusLocked() const {
   if (link_.ever_seen() && !link_.up()) return DeviceStatus::kLinkLost;
   if (phase_ == Phase::kFault) return DeviceStatus::kNodeFault;
   if (phase_ == Phase::kRunning) return DeviceStatus::kOk;
+  if (calibration_reader_.state() == NodeCalibrationReader::State::kInvalid) return DeviceStatus::kNotCalibrated;
   return DeviceStatus::kConnecting;
 }
 
@@ -110,7 +116,9 @@ DeviceStatus CanArm::ResetFault() {
   return DeviceStatus::kOk;
 }
 
-bool CanArm::Send(const fp::Message& m, fp::Nanoseconds now) {
+bool CanArm::Send(const fp::Message& m, fp::Nanoseconds now) { return Send(m, now, config_.send_deadline); }
+
+bool CanArm::Send(const fp::Message& m, fp::Nanoseconds now, fp::Nanoseconds deadline) {
   fp::CanFrame f;
   const fp::EncodeError e = fp::encode(m, f);
   if (e != fp::EncodeError::None) {
@@ -118,7 +126,7 @@ bool CanArm::Send(const fp::Message& m, fp::Nanoseconds now) {
     ++send_failures_;
     return false;
   }
-  const fp::SendStatus s = transport_.send(f, now + config_.send_deadline);
+  const fp::SendStatus s = transport_.send(f, now + deadline);
   if (s != fp::SendStatus::Queued) {
     last_error_ = std::string("transport refused frame: ") + fp::to_string(s);
     ++send_failures_;
@@ -179,6 +187,10 @@ void CanArm::HandleFrame(const fp::TimedFrame& rx) {
   } else if (const auto* id = std::get_if<fp::Identity>(&m)) {
     negotiated_ = id->negotiated_minor != 0xFF;
   } else if (const auto* pr = std::get_if<fp::ParameterResponse>(&m)) {
+    if (calibration_reader_.Accept(*pr)) {
+      if (calibration_reader_.state() == NodeCalibrationReader::State::kInvalid) calibration_read_ns_ = t;
+      return;
+    }
     if (pr->index == fp::param::kWatchdogTimeout_us && pr->op == fp::ParameterOp::Write) {
       watchdog_configured_ = true;  // an abort is reported, not retried forever
       if (pr->aborted) last_error_ = "node refused watchdog_timeout_us write, abort code " + std::to_string(pr->raw_value);
@@ -198,6 +210,8 @@ void CanArm::HandleFrame(const fp::TimedFrame& rx) {
 
 void CanArm::ForgetNodeSession() {
   state_sequence_.reset();
+  calibration_reader_.Restart();  // the node may have booted another slot, or been calibrated
+  calibration_read_ns_ = -1;
   negotiated_ = false;
   watchdog_configured_ = config_.node_watchdog_timeout.count() == 0;
   node_enabled_ = false;
@@ -206,11 +220,18 @@ void CanArm::ForgetNodeSession() {
 }
 
 void CanArm::SendHandshake(fp::Nanoseconds now) {
+  const std::int64_t t = Ns(now);
+  // The calibration is read before the node is started (SendCalibrationRead).
+  if (negotiated_ && calibration_reader_.state() == NodeCalibrationReader::State::kReading) return;
   // One step of the handshake per retry period: version, NMT start, explicit enable.
-  if (last_handshake_ns_ >= 0 && Ns(now) - last_handshake_ns_ < config_.retry_period.count()) return;
-  last_handshake_ns_ = Ns(now);
+  if (last_handshake_ns_ >= 0 && t - last_handshake_ns_ < config_.retry_period.count()) return;
+  last_handshake_ns_ = t;
   if (!negotiated_) {
     Send(fp::Hello{config_.node_id, fp::kProtocolMajor, fp::kProtocolMinor}, now);
+  } else if (calibration_reader_.state() != NodeCalibrationReader::State::kValid) {
+    // Refused: no force from an arm whose offsets, friction and gravity nobody measured. An
+    // arm left enabled by an earlier session is disabled.
+    if (node_enabled_) Send(fp::Control{config_.node_id, control_counter_++, fp::ControlCommand::Disable}, now);
   } else if (!watchdog_configured_ && !node_enabled_) {
     Send(fp::ParameterRequest{config_.node_id, fp::ParameterOp::Write, fp::ParameterType::U32,
                               fp::param::kWatchdogTimeout_us,
@@ -223,6 +244,21 @@ void CanArm::SendHandshake(fp::Nanoseconds now) {
   }
 }
 
+bool CanArm::SendCalibrationRead(fp::Nanoseconds now) {
+  if (!negotiated_) return false;
+  const std::int64_t t = Ns(now);
+  if (calibration_reader_.state() == NodeCalibrationReader::State::kInvalid && calibration_read_ns_ >= 0 &&
+      t - calibration_read_ns_ >= config_.calibration_recheck.count())
+    calibration_reader_.Restart();
+  // One read in flight, every other cycle at most: two arms' servo traffic and their reads share
+  // one bus within its budget.
+  const auto read =
+      calibration_reader_.NextRequest(config_.node_id, t, config_.retry_period.count(), kCalibrationReadSpacing_ns);
+  // A read is no servo frame: it may wait for a gap in two arms' servo traffic (the lowest
+  // priority but one, it loses every arbitration against them) until the next read is due.
+  return read && Send(*read, now, fp::Nanoseconds(kCalibrationReadSpacing_ns));
+}
+
 void CanArm::SendCommand(fp::Nanoseconds now, bool zero) {
   const std::int64_t t = Ns(now);
   double ramp = 0.0;
@@ -230,7 +266,11 @@ void CanArm::SendCommand(fp::Nanoseconds now, bool zero) {
     const double on_s = 1e-9 * static_cast<double>(t - enabled_since_ns_);
     ramp = config_.force_ramp_s > 0.0 ? std::clamp(on_s / config_.force_ramp_s, 0.0, 1.0) : 1.0;
   }
-  last_command_ = TipForceToMotorCurrents(q_, ramp * f_request_T_, config_.actuation);
+  const Eigen::Vector3d compensation_A =
+      calibration_reader_.state() == NodeCalibrationReader::State::kValid
+          ? Eigen::Vector3d(calibration_reader_.calibration().CompensationCurrent(q_, qd_))
+          : Eigen::Vector3d::Zero();
+  last_command_ = TipForceToMotorCurrents(q_, ramp * f_request_T_, config_.actuation, ramp * compensation_A);
   fp::CurrentCommand c{config_.node_id, command_counter_++, fp::CommandMode::MotorCurrent, {}};
   for (int j = 0; j < 3; ++j) c.value[j] = static_cast<float>(last_command_.current_A[j]);
   if (Send(c, now) && request_sent_ns_ < 0) request_sent_ns_ = t;
@@ -277,7 +317,7 @@ void CanArm::Tick() {
     phase_ = Phase::kConnecting;
   }
   if (phase_ == Phase::kConnecting && node_enabled_ && node_state_ == fp::NodeState::Operational && negotiated_ &&
-      watchdog_configured_) {
+      watchdog_configured_ && calibration_reader_.state() == NodeCalibrationReader::State::kValid) {
     phase_ = Phase::kRunning;
     enabled_since_ns_ = t;
   }
@@ -302,8 +342,11 @@ void CanArm::Tick() {
     return;
   }
   // Connecting: handshake, and keep the node sampled (zero commands once it is operational, so
-  // the watchdog is fed from the moment the node enables).
+  // the watchdog is fed from the moment the node enables). A cycle that reads the calibration
+  // sends that read instead of the sample: the node is not enabled yet, and the bus load stays
+  // one frame a cycle.
   SendHandshake(now);
+  if (SendCalibrationRead(now)) return;
   if (negotiated_ && node_state_ == fp::NodeState::Operational) {
     SendCommand(now, true);
   } else if (Send(fp::Sync{sync_counter_++}, now) && request_sent_ns_ < 0) {
@@ -339,6 +382,12 @@ ToolState CanArm::GetToolState() const {
   return s;
 }
 
+bool CanArm::calibration_valid() const {
+  std::lock_guard lock(mu_);
+  return calibration_reader_.state() == NodeCalibrationReader::State::kValid;
+}
+ArmCalibration CanArm::calibration() const { std::lock_guard lock(mu_); return calibration_reader_.calibration(); }
+std::string CanArm::calibration_problem() const { std::lock_guard lock(mu_); return calibration_reader_.problem(); }
 ArmJoints CanArm::joints() const { std::lock_guard lock(mu_); return q_; }
 fp::NodeState CanArm::node_state() const { std::lock_guard lock(mu_); return node_state_; }
 fp::FaultCode CanArm::node_fault() const { std::lock_guard lock(mu_); return node_fault_; }

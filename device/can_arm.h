@@ -6,9 +6,11 @@
 #include <string>
 
 #include "device/arm_actuation.h"
+#include "device/arm_calibration.h"
 #include "device/haptic_device.h"
 #include "device/latency_statistics.h"
 #include "device/link_monitor.h"
+#include "device/node_calibration_reader.h"
 #include "device/spherical_arm_kinematics.h"
 #include "firmware_protocol/codec/codec.h"
 #include "firmware_protocol/transport/transport.h"
@@ -26,14 +28,23 @@ struct CanArmConfig {
   std::chrono::microseconds node_watchdog_timeout{0};
   double force_ramp_s = 0.05;          ///< force fades in over this after every enable, >= 0
   double velocity_filter_hz = 50.0;    ///< joint velocity estimate from positions, > 0
+  /// While the node has no valid calibration, its calibration is read again this often (a
+  /// technician may be calibrating it now), > 0.
+  std::chrono::nanoseconds calibration_recheck{std::chrono::seconds(1)};
   std::string model_name = "Vesica 4-DOF spherical arm";
 };
 
 /// The host side of one arm on CAN (the bridge). Each Tick() is one servo cycle: read every
 /// frame that arrived, keep the link, node and joint state, then send either a current command
 /// (node enabled) or a SYNC (anything else, so the node's state is still sampled). The handshake
-/// (Hello, NMT start, explicit enable) runs inside Tick(), so Open() never blocks and a test can
-/// drive the whole thing on a virtual bus with an injected clock. Time is the transport's clock.
+/// (Hello, reading the node's calibration, NMT start, explicit enable) runs inside Tick(), so
+/// Open() never blocks and a test can drive the whole thing on a virtual bus with an injected
+/// clock. Time is the transport's clock.
+///
+/// Calibration: the node applies encoder directions and offsets itself; the bridge reads the
+/// calibration in force at every (re)connection (NodeCalibrationReader) and adds its friction and
+/// gravity compensation to every command (ArmCalibration). A node without a valid calibration is
+/// never enabled: status kNotCalibrated, calibration_problem() says why.
 ///
 /// Loss: no joint state for loss_timeout -> status kLinkLost, commands stop (the node's watchdog
 /// then zeroes torque and latches a fault). When states return, a latched fault is reported as
@@ -56,6 +67,13 @@ class CanArm final : public HapticDevice {
   void Tick();
 
   // Diagnostics.
+  std::uint8_t node_id() const { return config_.node_id; }
+  /// True once the node's calibration was read and is valid (then calibration() is in use).
+  bool calibration_valid() const;
+  ArmCalibration calibration() const;
+  /// Why the node's calibration is not valid ("slot A: blank, slot B: blank"); empty while it is
+  /// valid or still being read.
+  std::string calibration_problem() const;
   ArmJoints joints() const;
   fp::NodeState node_state() const;
   fp::FaultCode node_fault() const;          ///< latched fault as last reported, None if none
@@ -81,8 +99,11 @@ class CanArm final : public HapticDevice {
   /// The node may have restarted (link lost, or its boot-up message): its counters, version
   /// negotiation and RAM settings start afresh, so the handshake does too.
   void ForgetNodeSession();
-  bool Send(const fp::Message& m, fp::Nanoseconds now);
+  bool Send(const fp::Message& m, fp::Nanoseconds now);  ///< within config_.send_deadline
+  bool Send(const fp::Message& m, fp::Nanoseconds now, fp::Nanoseconds deadline);
   void SendHandshake(fp::Nanoseconds now);
+  /// One read of the node's calibration when one is due; true when it was sent.
+  bool SendCalibrationRead(fp::Nanoseconds now);
   void SendCommand(fp::Nanoseconds now, bool zero);
   DeviceStatus StatusLocked() const;
 
@@ -97,6 +118,8 @@ class CanArm final : public HapticDevice {
   LatencyStatistics round_trip_;
   fp::DecodeErrorCounters decode_errors_;
   fp::SequenceTracker state_sequence_;
+  NodeCalibrationReader calibration_reader_;
+  std::int64_t calibration_read_ns_ = -1;  ///< when the last read of an invalid calibration ended
 
   // Node as last reported.
   fp::NodeState node_state_ = fp::NodeState::Boot;

@@ -13,6 +13,7 @@ enum class DeviceStatus {
   kNoResponse,       ///< open(): the node never answered within the timeout
   kLinkLost,         ///< no joint state for longer than the loss timeout; commands stopped
   kNodeFault,        ///< the node latched a fault (watchdog, limit, E-stop); needs ResetFault()
+  kNotCalibrated,    ///< the node has no valid calibration in force: never enabled (run vesica-calibrate)
   kTransportError,   ///< the transport refused to send or reported a bus error
   kInvalidArgument,  ///< non-finite force, unknown joint, bad configuration
 };
@@ -26,6 +27,7 @@ constexpr std::string_view ToString(DeviceStatus s) {
     case DeviceStatus::kNoResponse: return "no response from node";
     case DeviceStatus::kLinkLost: return "link lost";
     case DeviceStatus::kNodeFault: return "node fault";
+    case DeviceStatus::kNotCalibrated: return "no valid calibration";
     case DeviceStatus::kTransportError: return "transport error";
     case DeviceStatus::kInvalidArgument: return "invalid argument";
   }

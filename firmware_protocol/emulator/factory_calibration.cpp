@@ -20,7 +20,8 @@ ParameterStore FactoryCalibration(const ArmPlantParameters& plant, const Joint4&
     const int direction = plant.encoder[m].direction < 0 ? -1 : 1;
     // The node reads direction * (park + direction * counts * count) + offset; counts are whole
     // (floored), so half a count centres the reading on the truth.
-    const double offset = q0[JointOfMotor(m)] - direction * static_cast<double>(park_position[m]) + 0.5 * truth.count(m);
+    const double offset =
+        q0[JointOfMotor(m)] - direction * static_cast<double>(park_position[m]) + 0.5 * truth.count(m);
     store.set_internal(param::kEncoderDirection + mm, static_cast<std::uint32_t>(direction));
     store.set_internal_f32(param::kPositionOffset + mm, static_cast<float>(offset));
     store.set_internal_f32(param::kCurrentOffset + mm, static_cast<float>(plant.current_sensor_offset_A[m]));

@@ -30,12 +30,18 @@ struct BridgeRig {
   bool arm_running = true;  ///< false: the arm's process is gone (see KillArm / StartArm)
   int step = 0;
 
-  explicit BridgeRig(const CanArmConfig& config = {}) {
+  /// The emulated arm's plant: the nominal arm, factory calibrated (set factory_calibrated = false
+  /// for a board nobody calibrated).
+  emu::ArmPlantParameters plant = emu::ArmPlantParameters::Nominal();
+
+  explicit BridgeRig(const CanArmConfig& config = {}) : BridgeRig(config, emu::ArmPlantParameters::Nominal()) {}
+  BridgeRig(const CanArmConfig& config, const emu::ArmPlantParameters& arm_plant) : plant(arm_plant) {
     StartArm();
     arm = std::make_unique<CanArm>(host_ep, config);
   }
 
-  /// A fresh arm process (vesica-armsim started again): a new node boots now on a blank flash.
+  /// A fresh arm process (vesica-armsim started again): a new node boots now on the flash the
+  /// factory left (calibrated, unless plant.factory_calibrated is false: then blank).
   void StartArm() {
     emu::ArmEmulator::Config ec;
     ec.board.park_position = {static_cast<float>(kStart[0]), static_cast<float>(kStart[1]),
@@ -43,7 +49,7 @@ struct BridgeRig {
     fp::TimedFrame stale;
     while (arm_ep.receive(stale)) {}  // a new process does not read its predecessor's socket
     arm_ep.set_connected(true);
-    emulator = std::make_unique<emu::ArmEmulator>(arm_ep, emu::ArmPlantParameters::Nominal(), kStart, ec);
+    emulator = std::make_unique<emu::ArmEmulator>(arm_ep, plant, kStart, ec);
     emu::HandTarget hold;
     hold.p_T = emu::TipPosition(kStart);
     emulator->plant().SetHandScript(emu::HandScript(hold));
