@@ -257,6 +257,34 @@ PatientVolume GenerateSyntheticPatient(const SyntheticPatientOptions& options) {
       }
     }
 
+  // No slivers: an opening (erode, dilate by one voxel) of the liver drops parts under two voxels
+  // thick (where its shape meets the crura), which a mesh could not follow.
+  {
+    const auto liver_at = [&](const std::vector<std::uint8_t>& mask, int i, int j, int k) {
+      return i >= 0 && j >= 0 && k >= 0 && i < v.dims[0] && j < v.dims[1] && k < v.dims[2] && mask[v.Index(i, j, k)];
+    };
+    std::vector<std::uint8_t> liver(v.labels.size()), eroded(v.labels.size(), 0);
+    for (std::size_t q = 0; q < liver.size(); ++q) liver[q] = label::IsLiver(v.labels[q]);
+    const int step[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (int k = 0; k < v.dims[2]; ++k)
+      for (int j = 0; j < v.dims[1]; ++j)
+        for (int i = 0; i < v.dims[0]; ++i) {
+          if (!liver[v.Index(i, j, k)]) continue;
+          bool all = true;
+          for (const auto& s : step) all = all && liver_at(liver, i + s[0], j + s[1], k + s[2]);
+          eroded[v.Index(i, j, k)] = all;
+        }
+    for (int k = 0; k < v.dims[2]; ++k)
+      for (int j = 0; j < v.dims[1]; ++j)
+        for (int i = 0; i < v.dims[0]; ++i) {
+          const std::size_t q = v.Index(i, j, k);
+          if (!liver[q] || eroded[q]) continue;
+          bool kept = false;
+          for (const auto& s : step) kept = kept || liver_at(eroded, i + s[0], j + s[1], k + s[2]);
+          if (!kept) v.labels[q] = label::kSoftTissue;
+        }
+  }
+
   // The capsule: the liver's outer voxel layer; and a check that the tumour lies inside the liver.
   std::vector<std::uint8_t> capsule(v.labels.size(), 0);
   for (int k = 1; k + 1 < v.dims[2]; ++k)
