@@ -267,7 +267,10 @@ void CalibrationPanel::Run(const std::string& command, int arm) {
   if (const int step = s.step_choice->currentData().toInt(); step >= 0) request.steps = {static_cast<c::Step>(step)};
   if (command == "calibrate") {
     s.steps_list->clear();
-    for (const std::string& row : StepRows(request.steps)) s.steps_list->addItem(Q("   " + row));
+    for (const std::string& row : StepRows(request.steps)) {
+      auto* item = new QListWidgetItem(Q("   " + row), s.steps_list);
+      item->setData(Qt::UserRole, Q(row));  // the step's name as the commands report it
+    }
     s.results->setRowCount(0);
     s.result_label->clear();
     s.open_report->setEnabled(false);
@@ -306,13 +309,13 @@ void CalibrationPanel::ShowProgress(int arm, const std::string& step, double fra
   // Steps before this one are done; this one shows its fraction and time left.
   for (int i = 0; i < s.steps_list->count(); ++i) {
     QListWidgetItem* item = s.steps_list->item(i);
-    const std::string name = item->text().toStdString().substr(3);
-    if (name != step) continue;
+    const QString name = item->data(Qt::UserRole).toString();
+    if (name.toStdString() != step) continue;
     for (int k = 0; k < i; ++k) {
       QListWidgetItem* done = s.steps_list->item(k);
-      if (!done->text().startsWith("✓")) done->setText("✓  " + done->text().mid(3));
+      done->setText("✓  " + done->data(Qt::UserRole).toString());
     }
-    item->setText((fraction >= 1.0 ? "✓  " : "▶  ") + Q(name));
+    item->setText((fraction >= 1.0 ? "✓  " : "▶  ") + name);
     s.steps_list->setCurrentRow(i);
   }
   s.step_progress->setValue(static_cast<int>(std::lround(1000 * std::clamp(fraction, 0.0, 1.0))));
