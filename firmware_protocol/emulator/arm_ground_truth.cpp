@@ -86,6 +86,15 @@ ArmGroundTruth RandomArm(std::uint64_t seed) {
   p.pitch_gravity_cos_Nm = -g * std::sin(phase);
   // Where the arm was at power-up (the board assumes it parked).
   t.power_up = {Uniform(rng, -0.5, 0.5), Uniform(rng, -0.5, 0.5), 0.0, Uniform(rng, 0.08, 0.2)};
+  // The hand sensors, drawn last so that every draw above stays what it was. Roll's absolute
+  // encoder at any mounting angle; the jaw's Hall sensor either way round, its span 2100-2700
+  // counts; the pedal's travel 2200-3400 counts.
+  p.roll_sensor_offset_rad = Uniform(rng, -std::numbers::pi, std::numbers::pi);
+  const bool jaw_up = rng() % 2 == 0;
+  p.hand_sensors.jaw_closed_counts = jaw_up ? Uniform(rng, 300.0, 700.0) : Uniform(rng, 3400.0, 3800.0);
+  p.hand_sensors.jaw_counts_per_rad = (jaw_up ? 1.0 : -1.0) * Uniform(rng, 3500.0, 4500.0);
+  p.hand_sensors.pedal_up_counts = Uniform(rng, 200.0, 600.0);
+  p.hand_sensors.pedal_down_counts = Uniform(rng, 2800.0, 3600.0);
   return t;
 }
 

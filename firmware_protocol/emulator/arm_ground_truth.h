@@ -34,6 +34,14 @@ struct ArmGroundTruth {
   double upper_stop(int joint) const;
   /// Torque constant actual / nominal (the node's parameter): what a current really gives.
   double torque_constant_ratio(int joint, double nominal_Nm_per_A) const;
+  /// The hand sensors (guided hand calibration): the roll encoder's reading minus the true roll,
+  /// rad in (-pi, pi]; the jaw ADC at the handle fully closed and fully open; the pedal ADC
+  /// released and pressed to its stop.
+  double roll_offset() const { return plant.roll_sensor_offset_rad; }
+  std::int32_t jaw_closed_raw() const { return plant.hand_sensors.JawRaw(0.0); }
+  std::int32_t jaw_open_raw() const { return plant.hand_sensors.JawRaw(plant.jaw_max_rad); }
+  std::int32_t pedal_up_raw() const { return plant.hand_sensors.PedalRaw(0.0); }
+  std::int32_t pedal_down_raw() const { return plant.hand_sensors.PedalRaw(1.0); }
 };
 
 /// Seeded random arm: ranges and spreads documented in the .cpp next to each draw.

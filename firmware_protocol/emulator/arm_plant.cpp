@@ -117,8 +117,13 @@ PlantSensors ArmPlant::ReadSensors() const {
   }
   s.roll_rad = WrapPi(Quantize(q_[2] + p_.roll_sensor_offset_rad, p_.roll_sensor_lsb_rad));
   const HandTarget target = script_.At(time_s_);
-  s.jaw_rad = Quantize(std::clamp(target.jaw_rad, 0.0, p_.jaw_max_rad), p_.jaw_sensor_lsb_rad);
-  s.pedal = target.pedal;
+  const double jaw = std::clamp(target.jaw_rad, 0.0, p_.jaw_max_rad);
+  s.jaw_rad = Quantize(jaw, p_.jaw_sensor_lsb_rad);
+  const double travel = target.pedal_travel >= 0.0 ? std::min(target.pedal_travel, 1.0) : (target.pedal ? 1.0 : 0.0);
+  s.pedal = target.pedal_travel >= 0.0 ? travel > 0.5 : target.pedal;
+  s.roll_raw = RollRaw(q_[2] + p_.roll_sensor_offset_rad);
+  s.jaw_raw = p_.hand_sensors.JawRaw(jaw);
+  s.pedal_raw = p_.hand_sensors.PedalRaw(travel);
   s.bus_V = p_.bus_V;
   s.board_temperature_degC = p_.board_temperature_degC;
   return s;

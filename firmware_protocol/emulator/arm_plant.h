@@ -21,6 +21,9 @@ struct PlantSensors {
   double roll_rad = 0.0;                         ///< absolute sensor, wrapped to (-pi, pi]
   double jaw_rad = 0.0;                          ///< handle sensor, quantized
   bool pedal = false;
+  std::int32_t roll_raw = 0;   ///< absolute roll encoder, 0..16383 a turn
+  std::int32_t jaw_raw = 0;    ///< jaw handle ADC, 0..4095
+  std::int32_t pedal_raw = 0;  ///< pedal ADC, 0..4095
   double bus_V = 0.0;
   double board_temperature_degC = 0.0;
 };

@@ -4,6 +4,7 @@
 
 #include "firmware_protocol/emulator/dc_motor.h"
 #include "firmware_protocol/emulator/hand_model.h"
+#include "firmware_protocol/emulator/hand_sensors.h"
 #include "firmware_protocol/emulator/incremental_encoder.h"
 
 namespace vesica::fp::emulator {
@@ -41,6 +42,7 @@ struct ArmPlantParameters {
   double roll_sensor_lsb_rad = 3.835e-4;    ///< 14 bits per turn
   double jaw_sensor_lsb_rad = 1e-3;         ///< Hall handle sensor resolution
   double jaw_max_rad = 0.6;                 ///< handle fully open
+  HandSensorModel hand_sensors;             ///< raw jaw and pedal ADCs (protocol 1.2 readout)
 
   double bus_V = 24.0;
   double board_temperature_degC = 30.0;

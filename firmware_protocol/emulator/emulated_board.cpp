@@ -47,6 +47,9 @@ HardwareSample EmulatedBoard::sense() {
   h.roll_rad = static_cast<float>(s.roll_rad);
   h.jaw_rad = static_cast<float>(s.jaw_rad);
   h.pedal = s.pedal;
+  h.roll_raw = s.roll_raw;
+  h.jaw_raw = s.jaw_raw;
+  h.pedal_raw = s.pedal_raw;
   h.handle_button = handle_button_;
   h.estop_input = estop_open_;
   h.bus_V = static_cast<float>(s.bus_V);

@@ -33,6 +33,8 @@ HandTarget HandScript::At(double t_s) const {
   for (int k = 0; k < 3; ++k) out.p_T[k] = a.target.p_T[k] + s * (b.target.p_T[k] - a.target.p_T[k]);
   out.roll_rad = a.target.roll_rad + s * (b.target.roll_rad - a.target.roll_rad);
   out.jaw_rad = a.target.jaw_rad + s * (b.target.jaw_rad - a.target.jaw_rad);
+  if (a.target.pedal_travel >= 0.0 && b.target.pedal_travel >= 0.0)
+    out.pedal_travel = a.target.pedal_travel + s * (b.target.pedal_travel - a.target.pedal_travel);
   return out;
 }
 

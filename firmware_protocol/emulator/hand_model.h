@@ -23,6 +23,7 @@ struct HandTarget {
   double roll_rad = 0.0;
   double jaw_rad = 0.0;       ///< handle opening, 0 closed
   bool pedal = false;
+  double pedal_travel = -1.0; ///< 0 released .. 1 pressed to its stop; < 0: pedal gives 0 or 1
   bool holding = true;        ///< false: the hand lets go (no force)
 };
 

@@ -28,6 +28,12 @@ struct HardwareSample {
   bool estop_input = false;   // hard-wired E-stop loop open
   float bus_V = 24;
   float board_temperature_degC = 25;
+  // Raw counts of the hand sensors, as their converters give them (protocol 1.2's readout for the
+  // guided hand calibration): roll's absolute encoder (0..16383 a turn), the jaw handle's and the
+  // pedal's ADCs (0..4095).
+  std::int32_t roll_raw = 0;
+  std::int32_t jaw_raw = 0;
+  std::int32_t pedal_raw = 0;
 };
 
 #if defined(__cpp_concepts) && __cpp_concepts >= 201907L
