@@ -55,6 +55,11 @@ struct CalibrationPanel::State {
   QPushButton* calibrate_button = nullptr;
   QPushButton* abort_button = nullptr;
   QListWidget* steps_list = nullptr;
+  QGroupBox* hand_box = nullptr;  // a guided hand motion's prompt, live value and answers
+  QLabel* hand_instruction = nullptr;
+  QLabel* hand_live = nullptr;
+  QPushButton* hand_accept = nullptr;
+  QPushButton* hand_retry = nullptr;
   QLabel* step_label = nullptr;
   QProgressBar* step_progress = nullptr;
   QPlainTextEdit* log = nullptr;
@@ -103,6 +108,7 @@ CalibrationPanel::CalibrationPanel(const c::ToolOptions& options, QWidget* paren
   s.arms_view = Named(new QPlainTextEdit, "arms_view");
   s.arms_view->setReadOnly(true);
   s.arms_view->setFont(mono);
+  s.arms_view->setLineWrapMode(QPlainTextEdit::NoWrap);  // info's columns as the terminal shows them
   s.arms_view->setMinimumHeight(120);
   s.scan_button = Named(new QPushButton("&Scan"), "scan_button");
   s.info_button = Named(new QPushButton("&Info"), "info_button");
@@ -149,6 +155,7 @@ CalibrationPanel::CalibrationPanel(const c::ToolOptions& options, QWidget* paren
   s.log = Named(new QPlainTextEdit, "log");
   s.log->setReadOnly(true);
   s.log->setFont(mono);
+  s.log->setLineWrapMode(QPlainTextEdit::NoWrap);
   auto* progress_column = new QVBoxLayout;
   progress_column->addWidget(s.step_label);
   progress_column->addWidget(s.step_progress);
@@ -156,8 +163,24 @@ CalibrationPanel::CalibrationPanel(const c::ToolOptions& options, QWidget* paren
   auto* progress_row = new QHBoxLayout;
   progress_row->addWidget(s.steps_list);
   progress_row->addLayout(progress_column, 1);
+  s.hand_box = Named(new QGroupBox("Move the arm by hand"), "hand_box");
+  s.hand_instruction = Named(new QLabel, "hand_instruction");
+  s.hand_instruction->setWordWrap(true);
+  s.hand_live = Named(new QLabel, "hand_live");
+  s.hand_live->setFont(mono);
+  s.hand_accept = Named(new QPushButton("Take this &value"), "hand_accept");
+  s.hand_retry = Named(new QPushButton("Start the step a&gain"), "hand_retry");
+  auto* hand_row = new QHBoxLayout;
+  hand_row->addWidget(s.hand_live, 1);
+  hand_row->addWidget(s.hand_accept);
+  hand_row->addWidget(s.hand_retry);
+  auto* hand_layout = new QVBoxLayout(s.hand_box);
+  hand_layout->addWidget(s.hand_instruction);
+  hand_layout->addLayout(hand_row);
+  s.hand_box->hide();
   auto* run_layout = new QVBoxLayout(run_box);
   run_layout->addLayout(run_row);
+  run_layout->addWidget(s.hand_box);
   run_layout->addLayout(progress_row);
 
   // The result: every check and the report.
@@ -197,6 +220,16 @@ CalibrationPanel::CalibrationPanel(const c::ToolOptions& options, QWidget* paren
   connect(s.open_report, &QPushButton::clicked, this,
           [this] { QDesktopServices::openUrl(QUrl::fromLocalFile(Q(s_->report_html))); });
   connect(close, &QPushButton::clicked, this, [this] { reject(); });
+  connect(s.hand_accept, &QPushButton::clicked, this, [this] {
+    s_->ui->HandAnswered(c::HandAnswer::kAccept);
+    s_->hand_accept->setEnabled(false);
+    s_->hand_retry->setEnabled(false);
+  });
+  connect(s.hand_retry, &QPushButton::clicked, this, [this] {
+    s_->ui->HandAnswered(c::HandAnswer::kRetry);
+    s_->hand_accept->setEnabled(false);
+    s_->hand_retry->setEnabled(false);
+  });
 
   CalibrationPanelHandlers handlers;
   handlers.progress = [this](int arm, const std::string& step, double f, double eta) { ShowProgress(arm, step, f, eta); };
@@ -209,6 +242,24 @@ CalibrationPanel::CalibrationPanel(const c::ToolOptions& options, QWidget* paren
     box->setAttribute(Qt::WA_DeleteOnClose);
     connect(box, &QMessageBox::finished, this, [box, answer] { answer(box->result() == QMessageBox::Yes); });
     box->open();
+  };
+  handlers.hand_prompt = [this](const c::HandPrompt& p) {
+    State& st = *s_;
+    std::string title = "arm " + std::to_string(p.arm) + " " + p.step + " (" + std::to_string(p.prompt_index + 1) +
+                        " of " + std::to_string(p.prompt_count);
+    if (p.attempt > 1) title += ", try " + std::to_string(p.attempt);
+    st.hand_box->setTitle(Q(title + ")"));
+    std::string text = p.instruction;
+    if (!p.retry_reason.empty()) text = "Again: " + p.retry_reason + ".\n" + text;
+    st.hand_instruction->setText(Q(text));
+    st.hand_live->setText("live: --");
+    st.hand_accept->setEnabled(true);
+    st.hand_retry->setEnabled(true);
+    st.hand_box->show();
+    st.log->appendPlainText(Q(title + "): " + p.instruction));
+  };
+  handlers.hand_live = [this](const c::HandPrompt& p, double v) {
+    s_->hand_live->setText(QString("live: %1 %2").arg(v, 0, 'f', p.unit == "counts" ? 0 : 4).arg(Q(p.unit)));
   };
   s.ui = std::make_unique<CalibrationPanelUi>(this, std::move(handlers), &s.abort);
   resize(1100, 720);
@@ -332,6 +383,7 @@ void CalibrationPanel::Finished() {
                                                     s.joint_choice, s.step_choice})
     w->setEnabled(true);
   s.abort_button->setEnabled(false);
+  s.hand_box->hide();
   const c::CommandOutcome& o = s.outcome;
   if (s.command == "scan" || s.command == "info") {
     // What the command line prints, as it prints it.
@@ -377,6 +429,8 @@ void CalibrationPanel::ShowResults() {
     const std::size_t pass = summary.rfind("PASS");
     if (pass != std::string::npos) summary = summary.substr(pass);
     s.step_label->setText("done");
+    for (int i = 0; i < s.steps_list->count(); ++i)
+      s.steps_list->item(i)->setText("✓  " + s.steps_list->item(i)->data(Qt::UserRole).toString());
   } else {
     s.step_label->setText(Q(std::string("stopped: ") + c::ExitName(o.exit_code)));
   }

@@ -42,6 +42,39 @@ bool CalibrationPanelUi::ConfirmMotion(const calibrate::MotionNotice& notice) {
   return answer.get();
 }
 
+calibrate::HandAnswer CalibrationPanelUi::GuideHand(const calibrate::HandPrompt& prompt, double live_value) {
+  if (abort_ && abort_->load()) return calibrate::HandAnswer::kAbort;
+  const std::string key =
+      prompt.step + "/" + std::to_string(prompt.prompt_index) + "/" + std::to_string(prompt.attempt);
+  const auto now = std::chrono::steady_clock::now();
+  bool fresh = false, show_live = false;
+  std::optional<calibrate::HandAnswer> answer;
+  {
+    std::lock_guard<std::mutex> lock(hand_mutex_);
+    if (key != hand_key_) {  // an answer given to the previous prompt is not this one's
+      hand_key_ = key;
+      hand_answer_.reset();
+      hand_shown_ = {};
+      fresh = true;
+    }
+    answer.swap(hand_answer_);
+    if (now - hand_shown_ >= std::chrono::milliseconds(100)) {
+      hand_shown_ = now;
+      show_live = true;
+    }
+  }
+  if (fresh) QMetaObject::invokeMethod(gui_, [h = handlers_.hand_prompt, prompt] { h(prompt); }, Qt::QueuedConnection);
+  if (show_live || answer)
+    QMetaObject::invokeMethod(
+        gui_, [h = handlers_.hand_live, prompt, live_value] { h(prompt, live_value); }, Qt::QueuedConnection);
+  return answer.value_or(calibrate::HandAnswer::kWait);
+}
+
+void CalibrationPanelUi::HandAnswered(calibrate::HandAnswer answer) {
+  std::lock_guard<std::mutex> lock(hand_mutex_);
+  hand_answer_ = answer;
+}
+
 std::string MotionQuestion(const calibrate::MotionNotice& notice) {
   std::string text = notice.arm_text + " will move:\n";
   for (const std::string& m : notice.motions) text += "  - " + m + "\n";

@@ -25,6 +25,8 @@
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "app/calibrate/commands.h"
 #include "app/calibrate/exit_codes.h"
@@ -33,6 +35,7 @@
 #include "app/session/dissection_setup.h"
 #include "app/trainer/calibration_bus.h"
 #include "app/trainer/calibration_panel.h"
+#include "app/trainer/calibration_panel_ui.h"
 #include "app/trainer/trainer_window.h"
 #include "device/calibration/calibration_abort.h"
 #include "firmware_protocol/emulator/arm_ground_truth.h"
@@ -86,6 +89,65 @@ void AnswerPrompt(CalibrationPanel& panel, QMessageBox::StandardButton button) {
   EXPECT_NE(text.find("0.60 A"), std::string::npos) << text;
   EXPECT_TRUE(box->isModal());
   QTest::mouseClick(box->button(button), Qt::LeftButton);
+}
+
+// The guided hand motion's prompt through the panel's ToolUi: the worker keeps asking (the link is
+// serviced between calls) and gets kWait until the panel's button answers, then that answer once;
+// an answer left from an earlier prompt is not the next prompt's; the abort flag stops it.
+TEST(CalibrationPanelUi, AGuidedHandPromptWaitsForThePersonWithoutBlockingTheWorker) {
+  QObject gui;
+  std::vector<c::HandPrompt> shown;
+  double live = -1.0;
+  CalibrationPanelHandlers handlers;
+  handlers.progress = [](int, const std::string&, double, double) {};
+  handlers.note = [](const std::string&) {};
+  handlers.ask = [](const c::MotionNotice&, std::function<void(bool)> answer) { answer(false); };
+  handlers.hand_prompt = [&](const c::HandPrompt& p) { shown.push_back(p); };
+  handlers.hand_live = [&](const c::HandPrompt&, double v) { live = v; };
+  std::atomic<bool> abort{false};
+  CalibrationPanelUi ui(&gui, handlers, &abort);
+
+  c::HandPrompt prompt;
+  prompt.arm = 1;
+  prompt.step = "jaw span";
+  prompt.instruction = "Close the jaw handle fully and hold it there.";
+  prompt.unit = "counts";
+  prompt.prompt_count = 2;
+  std::atomic<int> calls{0};
+  std::atomic<bool> done{false};
+  c::HandAnswer answer = c::HandAnswer::kWait;
+  const auto ask = [&](const c::HandPrompt& p) {
+    done = false;
+    calls = 0;
+    return std::thread([&, p] {
+      do {
+        answer = ui.GuideHand(p, 1000.0 + calls);
+        ++calls;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      } while (answer == c::HandAnswer::kWait);
+      done = true;
+    });
+  };
+  std::thread worker = ask(prompt);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return shown.size() == 1 && live >= 1000.0; }, 10000));
+  EXPECT_EQ(shown[0].instruction, prompt.instruction);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return calls > 50; }, 10000));
+  EXPECT_FALSE(done) << "answered before anyone pressed a button";
+  ui.HandAnswered(c::HandAnswer::kAccept);
+  worker.join();
+  EXPECT_EQ(answer, c::HandAnswer::kAccept);
+
+  // A retry pressed for prompt 1 that the worker had not taken is not prompt 2's answer.
+  ui.HandAnswered(c::HandAnswer::kRetry);
+  prompt.prompt_index = 1;
+  EXPECT_EQ(ui.GuideHand(prompt, 2000.0), c::HandAnswer::kWait);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return shown.size() == 2; }, 10000));
+  EXPECT_EQ(shown[1].prompt_index, 1);
+  ui.HandAnswered(c::HandAnswer::kRetry);
+  EXPECT_EQ(ui.GuideHand(prompt, 2001.0), c::HandAnswer::kRetry);
+  EXPECT_EQ(ui.GuideHand(prompt, 2002.0), c::HandAnswer::kWait);  // taken once
+  abort = true;
+  EXPECT_EQ(ui.GuideHand(prompt, 2003.0), c::HandAnswer::kAbort);
 }
 
 TEST(CalibrationBusOf, TheTrainersArmsWhereItDrivesThem) {
@@ -210,6 +272,12 @@ TEST(CalibrationPanel, RunsAWholeCalibrationOfAnEmulatedArmToItsGroundTruth) {
   std::ifstream page(html);
   const std::string text((std::istreambuf_iterator<char>(page)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("yaw.coulomb"), std::string::npos);
+
+  // docs/images/calibration-panel.png is this moment (VESICA_CALIBRATION_PANEL_PNG=path).
+  if (const char* png = std::getenv("VESICA_CALIBRATION_PANEL_PNG")) {
+    QTest::qWait(200);
+    EXPECT_TRUE(panel.grab().save(png)) << png;
+  }
 
   // The node booted what was saved.
   c::ToolSession* s = panel.last_session();
