@@ -55,7 +55,8 @@ BlockLattice BuildBlockLattice(const LabelVolume& volume, int block_voxels,
   return lattice;
 }
 
-void BlockLattice::LinkInto(ChainMail& mail, const LabelVolume& volume) const {
+void BlockLattice::LinkInto(ChainMail& mail, const LabelVolume& volume, int connectivity) const {
+  if (connectivity != 6 && connectivity != 26) throw std::invalid_argument("block lattice: connectivity must be 6 or 26");
   const Eigen::Vector3d block = volume.spacing_m * block_voxels;
   const auto& bd = block_dims;
   for (int e = 0; e < size(); ++e) {
@@ -65,7 +66,7 @@ void BlockLattice::LinkInto(ChainMail& mail, const LabelVolume& volume) const {
         for (int di = -1; di <= 1; ++di) {
           // Each pair once: forward offsets only (the first non-zero of dk, dj, di is positive).
           const bool forward = dk > 0 || (dk == 0 && (dj > 0 || (dj == 0 && di > 0)));
-          if (!forward) continue;
+          if (!forward || (connectivity == 6 && std::abs(di) + std::abs(dj) + std::abs(dk) != 1)) continue;
           const int ni = bi + di, nj = bj + dj, nk = bk + dk;
           if (ni < 0 || nj < 0 || nk < 0 || ni >= bd[0] || nj >= bd[1] || nk >= bd[2]) continue;
           const int other = element_of_block[static_cast<std::size_t>(ni + bd[0] * (nj + bd[1] * nk))];

@@ -26,8 +26,10 @@ struct BlockLattice {
 
   [[nodiscard]] int size() const { return static_cast<int>(rest_m.size()); }
   [[nodiscard]] int ElementOfVoxel(int i, int j, int k) const;
-  /// Links every pair of touching elements into mail (built with size() elements).
-  void LinkInto(ChainMail& mail, const LabelVolume& volume) const;
+  /// Links touching elements into mail (built with size() elements): face neighbours only
+  /// (connectivity 6, Gibson's lattice: enough for a solid organ) or all 26 (a thin sloping sheet
+  /// such as the diaphragm is only connected through edges and corners).
+  void LinkInto(ChainMail& mail, const LabelVolume& volume, int connectivity = 26) const;
 };
 
 /// Elements where in_organ(label) holds. Throws std::invalid_argument naming `organ` when none.

@@ -86,9 +86,9 @@ LiverModel BuildLiver(const LabelVolume& v, const DiaphragmModel& diaphragm, con
   liver.lattice = BuildBlockLattice(v, BlockVoxels(p.liver_block_m, v), label::IsLiver, "liver");
   const int n = liver.lattice.size();
   liver.mail = std::make_shared<ChainMail>(n, p.liver_mail);
-  liver.lattice.LinkInto(*liver.mail, v);
+  liver.lattice.LinkInto(*liver.mail, v, 6);
   for (int e = 0; e < n; ++e)
-    if (liver.lattice.neighbour_count[static_cast<std::size_t>(e)] < 26) liver.capsule.push_back(e);
+    if (liver.lattice.neighbour_count[static_cast<std::size_t>(e)] < 26) liver.capsule.push_back(e);  // on the surface
 
   // Coupling (seed 4.5): liver voxels closer than the threshold to a diaphragm voxel.
   std::vector<std::map<int, int>> pairs(static_cast<std::size_t>(n));

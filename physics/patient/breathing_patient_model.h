@@ -27,7 +27,7 @@ struct BreathingPatientParameters {
   double diaphragm_block_m = 0.006;  ///< diaphragm lattice spacing (rounded to whole voxels)
   double liver_block_m = 0.008;      ///< liver lattice spacing
   ChainMailParameters diaphragm_mail{0.5, 1.5, 0.5};  ///< a thin muscle sheet that contracts: loose
-  ChainMailParameters liver_mail{0.85, 1.15, 0.15};      ///< parenchyma: stiffer
+  ChainMailParameters liver_mail{0.92, 1.08, 0.08};      ///< parenchyma: stiffer
   double coupling_threshold_m = 0.005;         ///< seed 4.5: liver within 5 mm of the diaphragm is coupled
   double coupling_stiffness_N_per_m = 200.0;   ///< per coupled lattice element, the ligaments' pull
   double liver_support_stiffness_N_per_m = 10.0;  ///< per coupled element, what holds the liver below

@@ -1,6 +1,7 @@
 #include "physics/patient/chain_mail.h"
 
 #include <cmath>
+#include <algorithm>
 #include <queue>
 #include <stdexcept>
 #include <string>
@@ -74,14 +75,19 @@ void ChainMail::Finalise() const {
 int ChainMail::Pass(std::span<const int> seeds, int c, bool raise, std::span<Eigen::Vector3d> u,
                     std::span<const std::uint8_t> pinned, int& blocked) const {
   // Longest-path Dijkstra: the element with the largest displacement (raise) is settled first.
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry> queue;
+  // The heap is a member so that a move allocates nothing.
+  std::vector<Entry>& heap = heap_;
+  heap.clear();
   const double sign = raise ? 1.0 : -1.0;
-  for (int s : seeds) queue.emplace(sign * u[static_cast<std::size_t>(s)](c), s);
+  for (int s : seeds) {
+    heap.emplace_back(sign * u[static_cast<std::size_t>(s)](c), s);
+    std::push_heap(heap.begin(), heap.end());
+  }
   int moved = 0;
-  while (!queue.empty()) {
-    const auto [key, a] = queue.top();
-    queue.pop();
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end());
+    const auto [key, a] = heap.back();
+    heap.pop_back();
     const double ua = u[static_cast<std::size_t>(a)](c);
     if (sign * ua != key) continue;  // a stale entry
     for (int h = first_[static_cast<std::size_t>(a)]; h < first_[static_cast<std::size_t>(a) + 1]; ++h) {
@@ -97,7 +103,8 @@ int ChainMail::Pass(std::span<const int> seeds, int c, bool raise, std::span<Eig
       undo_.push_back({half.other, c, ub});
       ub = bound;
       ++moved;
-      queue.emplace(sign * ub, half.other);
+      heap.emplace_back(sign * ub, half.other);
+      std::push_heap(heap.begin(), heap.end());
     }
   }
   return moved;

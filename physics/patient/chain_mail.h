@@ -94,6 +94,8 @@ class ChainMail {
   mutable bool dirty_ = true;
   mutable std::vector<std::uint8_t> pinned_scratch_;
   mutable std::vector<Undo> undo_;
+  using Entry = std::pair<double, int>;
+  mutable std::vector<Entry> heap_;
 };
 
 }  // namespace vesica::physics
