@@ -87,6 +87,10 @@ int main(int argc, char** argv) {
   app.add_option("--random-arm", random_arm,
                  "a seeded random arm (RandomArm: encoder, stops, friction, gravity...) as built, powered up off "
                  "centre and nobody holding it: what vesica-calibrate must find (0: the nominal arm)");
+  bool uncalibrated = false;
+  app.add_flag("--uncalibrated", uncalibrated,
+               "the nominal arm with a blank flash, as a board nobody calibrated: the trainer's bridge refuses to "
+               "enable it until vesica-calibrate has calibrated it (default: it left the factory calibrated)");
   CLI11_PARSE(app, argc, argv);
   if (local_port->count() == 0) udp.local_port = 20000 + 2 * (node_id - 1);
   if (remote_port->count() == 0) udp.remote_port = udp.local_port + 1;
@@ -145,6 +149,7 @@ int main(int argc, char** argv) {
   config.node_id = static_cast<std::uint8_t>(node_id);
   config.board.park_position = {0.0f, 0.0f, static_cast<float>(depth)};
   emu::ArmPlantParameters plant = emu::ArmPlantParameters::Nominal();
+  plant.factory_calibrated = !uncalibrated;
   if (random_arm != 0) {
     // As the calibration tests' rig: the board assumes the design centre, the arm is elsewhere.
     const emu::ArmGroundTruth truth = emu::RandomArm(random_arm);

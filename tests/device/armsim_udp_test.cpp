@@ -70,6 +70,38 @@ TEST(ArmsimUdpTest, SeparateProcessEmulatorWorksWithTheSameBridge) {
   EXPECT_EQ(arm.decode_errors().total(), 0u);
 }
 
+// vesica-armsim --uncalibrated: a board nobody calibrated. The bridge reads its blank slots and
+// never enables it; the arm reports pre-operational and disabled at its end.
+TEST(ArmsimUdpTest, UncalibratedArmIsNeverEnabled) {
+  const std::uint16_t arm_port = testing::FreeUdpPort();
+  std::string error;
+  auto host = fp::UdpTransport::open({.local_port = 0, .remote_port = arm_port}, error);
+  ASSERT_TRUE(host) << error;
+  ASSERT_NE(arm_port, 0);
+  testing::ArmsimProcess armsim;
+  ASSERT_TRUE(armsim.Start(VESICA_ARMSIM_PATH,
+                           {"--local-port", std::to_string(arm_port), "--remote-port",
+                            std::to_string(host->local_port()), "--duration-s", "2", "--report", "--uncalibrated",
+                            "--log-level", "warn"}));
+  CanArmConfig config;
+  config.node_watchdog_timeout = 50ms;
+  config.loss_timeout = 100ms;
+  CanArm arm(*host, config);
+  ASSERT_EQ(arm.Open(), DeviceStatus::kConnecting);
+  BridgeLoop loop(arm);
+  loop.Start();
+  for (int i = 0; i < 150 && arm.Status() != DeviceStatus::kNotCalibrated; ++i) std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(arm.Status(), DeviceStatus::kNotCalibrated) << ToString(arm.Status()) << " " << arm.last_error();
+  EXPECT_EQ(arm.calibration_problem(), "slot A: blank, slot B: blank");
+  arm.SetTipForce(Eigen::Vector3d(0.8, -0.4, 1.2));
+  std::string report;
+  const int rc = armsim.Finish(&report);
+  loop.Stop();
+  ASSERT_EQ(rc, 0) << report;
+  EXPECT_NE(report.find("actuator_force_N=0.000000,0.000000,0.000000"), std::string::npos) << report;
+  EXPECT_NE(report.find("state=pre-operational"), std::string::npos) << report;
+}
+
 // The arm process dies mid-session (vanished device): the bridge reports the loss and keeps
 // running; a new arm process on the same port is picked up again through a fresh handshake.
 TEST(ArmsimUdpTest, VanishedArmProcessIsReportedAndReplacementReconnects) {
