@@ -36,7 +36,8 @@ CalibrationResult ArmCalibrator::Run() {
                  {kStepIndex, "index", FindReferenceIndex},
                  {kStepFriction, "friction", IdentifyFriction},
                  {kStepGravity, "gravity", IdentifyGravity},
-                 {kStepTorqueConstant, "torque constant", CheckTorqueConstants}};
+                 {kStepTorqueConstant, "torque constant", CheckTorqueConstants},
+                 {kStepHandSensors, "hand sensors", CalibrateHandSensors}};
     for (const auto& s : steps) {
       if (!(plan_.steps & s.bit)) continue;
       step = s.name;

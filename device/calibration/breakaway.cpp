@@ -38,7 +38,8 @@ double Breakaway(StepContext& ctx, int j, double position, double sign, double& 
           moved = ctx.link.sample().position[j] - start;
           if (std::abs(moved) > moved_by) return true;
           amps = hold_amps + sign * ctx.plan.gravity_ramp_A_per_s * (ctx.link.now_s() - t0);
-          if (std::abs(amps) > limit) throw CalibrationAbort(AbortReason::kMeasurement, what + ": held against the current limit");
+          if (std::abs(amps) > limit)
+            throw CalibrationAbort(AbortReason::kMeasurement, what + ": held against the current limit");
           servo.Open(j, amps);
           return false;
         },

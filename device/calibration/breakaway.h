@@ -9,7 +9,7 @@
 namespace vesica::device::calibration {
 
 struct HoldTorque {
-  double at = 0.0;          ///< where the joint was held (mean of both holds), rad or m
+  double at = 0.0;              ///< where the joint was held (mean of both holds), rad or m
   double breakaway_up = 0.0;    ///< N m or N, node torque units
   double breakaway_down = 0.0;  ///< N m or N
   double holding() const { return 0.5 * (breakaway_up + breakaway_down); }

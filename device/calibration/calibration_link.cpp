@@ -93,6 +93,13 @@ void CalibrationLink::Handle(const fp::Message& m, fp::Nanoseconds t) {
   } else if (const auto* pr = std::get_if<fp::ParameterResponse>(&m)) {
     response_ = *pr;
     response_seen_ = true;
+  } else if (const auto* hs = std::get_if<fp::CalibrationProgress>(&m);
+             hs && hs->procedure == fp::CalibrationProcedure::HandSensors &&
+             hs->status == fp::CalibrationStatus::Running) {
+    if (hs->joint < 3) {  // the readout's stream, not a procedure's progress
+      hand_raw_[hs->joint] = hs->result;
+      hand_raw_t_s_[hs->joint] = Seconds(t);
+    }
   } else if (const auto* cp = std::get_if<fp::CalibrationProgress>(&m)) {
     progress_ = *cp;
     progress_seen_ = true;
@@ -265,6 +272,30 @@ void CalibrationLink::AbortSession() noexcept {
   session_open_ = false;
   watch_faults_ = false;
   last_amps_ = {};
+}
+
+void CalibrationLink::StartHandSensorReadout(const std::string& what) {
+  if (identity_.negotiated_minor == 0xFF || identity_.negotiated_minor < 2)
+    throw CalibrationAbort(
+        AbortReason::kProtocolTooOld,
+        "node " + std::to_string(config_.node_id) + " speaks protocol " + std::to_string(identity_.protocol_major) +
+            "." +
+            std::to_string(identity_.negotiated_minor == 0xFF ? identity_.max_minor : identity_.negotiated_minor) +
+            " with this tool; " + what + " need 1.2 (update the arm's firmware); nothing was changed");
+  progress_seen_ = false;
+  hand_raw_t_s_ = {-1.0, -1.0, -1.0};
+  Send(fp::CalibrationCommand{config_.node_id, fp::CalibrationProcedure::HandSensors, 0b111, 0.0f});
+  const double until = now_s() + Seconds(config_.reply_timeout);
+  while (hand_raw_t_s_[0] < 0 || hand_raw_t_s_[1] < 0 || hand_raw_t_s_[2] < 0) {
+    Cycle(last_amps_);
+    if (progress_seen_ && progress_.procedure == fp::CalibrationProcedure::HandSensors &&
+        progress_.status == fp::CalibrationStatus::Failed)
+      throw CalibrationAbort(AbortReason::kRefused,
+                             "node " + std::to_string(config_.node_id) + " refused the hand-sensor readout");
+    if (now_s() > until)
+      throw CalibrationAbort(AbortReason::kNoAnswer,
+                             "node " + std::to_string(config_.node_id) + " did not report its hand sensors");
+  }
 }
 
 std::int32_t CalibrationLink::RunNodeProcedure(fp::CalibrationProcedure procedure, std::uint8_t joint_mask,

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "firmware_protocol/codec/codec.h"
 #include "firmware_protocol/transport/transport.h"
@@ -79,6 +80,16 @@ class CalibrationLink {
   std::int32_t RunNodeProcedure(fp::CalibrationProcedure procedure, std::uint8_t joint_mask, double max_current_A,
                                 double timeout_s, const std::function<std::array<double, 3>()>& command);
 
+  /// Protocol 1.2: asks the node (inside the session) for its raw hand sensors, reported every
+  /// 20 ms until the session ends, and waits for the first report. Throws kProtocolTooOld for a
+  /// node that negotiated less than 1.2, naming `what`.
+  void StartHandSensorReadout(const std::string& what);
+  /// The latest raw reading of hand sensor k (0 roll, 1 jaw, 2 pedal) and its bus time (< 0: none).
+  std::int32_t hand_raw(int k) const { return hand_raw_[k]; }
+  double hand_raw_t_s(int k) const { return hand_raw_t_s_[k]; }
+  /// The minor negotiated at Connect (0xFF before).
+  std::uint8_t negotiated_minor() const { return identity_.negotiated_minor; }
+
   /// One servo period: send the currents (a SYNC outside a session), wait a period, read what came.
   const LinkSample& Cycle(const std::array<double, 3>& amps);
 
@@ -118,6 +129,8 @@ class CalibrationLink {
   fp::ParameterResponse response_;
   bool progress_seen_ = false;
   fp::CalibrationProgress progress_;
+  std::array<std::int32_t, 3> hand_raw_{};
+  std::array<double, 3> hand_raw_t_s_{-1.0, -1.0, -1.0};
   std::uint8_t command_counter_ = 0;
   std::uint8_t sync_counter_ = 0;
   std::uint8_t control_counter_ = 0;

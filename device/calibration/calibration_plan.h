@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "device/calibration/hand_guide.h"
+
 namespace vesica::device::calibration {
 
 /// The steps of a calibration, in the order they run (bits of CalibrationPlan::steps).
@@ -19,6 +21,8 @@ enum CalibrationStepBit : std::uint8_t {
   kAllSteps = 0x3F,  ///< a whole calibration; the checks below need a fixture and run on request
   /// Torque constant against the reference load fixture (clamped on for this step alone).
   kStepTorqueConstant = 1u << 6,
+  /// Roll sensor offset, jaw handle span and pedal travel by guided hand motion (a person).
+  kStepHandSensors = 1u << 7,
 };
 
 /// How a calibration moves the arm: every motion slow and current-limited. Joint order yaw,
@@ -43,8 +47,14 @@ struct CalibrationPlan {
   std::array<double, 3> reference_stiffness{0.4, 0.4, 20.0};
   std::array<double, 3> torque_constant_span{0.25, 0.25, 0.025};  ///< holds within +- this of the centre
   int torque_constant_holds = 5;                                  ///< per joint, >= 2
-  std::uint32_t date_s = 0;                               ///< recorded in the stored slot (Unix time)
-  std::uint32_t tool_version = 0x000100;                  ///< major << 16 | minor << 8 | patch
+  /// The guided hand steps' person (prompts with a live value); null: those steps stop at once.
+  HandGuide hand_guide;
+  int hand_attempts = 3;                  ///< a step whose readings fail their check this often fails
+  double jaw_min_span_counts = 500;       ///< ADC counts between closed and open, at least
+  double pedal_min_travel_counts = 500;   ///< ADC counts between released and pressed, at least
+  double hand_prompt_timeout_s = 600;     ///< bus time a prompt waits for its answer
+  std::uint32_t date_s = 0;               ///< recorded in the stored slot (Unix time)
+  std::uint32_t tool_version = 0x000100;  ///< major << 16 | minor << 8 | patch
   /// Step name and fraction done (0..1), called as the calibration goes.
   std::function<void(const std::string& step, double fraction)> progress;
 };

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,16 @@ struct JointCalibration {
   std::vector<LoadHold> load_holds;
 };
 
+/// The guided hand steps' readings (raw counts as the node reports them).
+struct HandSensorCalibration {
+  bool roll_measured = false, jaw_measured = false, pedal_measured = false;
+  std::int32_t roll_raw = 0;     ///< roll encoder with the instrument at its reference (mark up)
+  double roll_offset_rad = 0.0;  ///< what the roll sensor reads at the reference, (-pi, pi]
+  std::int32_t jaw_closed_raw = 0, jaw_open_raw = 0;
+  std::int32_t pedal_up_raw = 0, pedal_down_raw = 0;
+  int roll_attempts = 0, jaw_attempts = 0, pedal_attempts = 0;  ///< 1 when the first was taken
+};
+
 /// What a calibration found and did.
 struct CalibrationResult {
   NodeIdentity identity;
@@ -54,6 +65,7 @@ struct CalibrationResult {
   double gravity_sin = 0.0;  ///< pitch holding torque = sin * sin(pitch) + cos * cos(pitch), N m
   double gravity_cos = 0.0;
   std::vector<GravityHold> gravity_holds;
+  HandSensorCalibration hand;
   bool saved = false;                      ///< stored in a slot on the node
   AbortReason abort = AbortReason::kNone;  ///< why it stopped early
   std::string message;                     ///< for the technician

@@ -55,5 +55,14 @@ void IdentifyGravity(StepContext& ctx);
 /// fixture (plan.reference_stiffness): the slope of the holding torque over position is the
 /// spring's stiffness over the ratio. Pitch's gravity (as found or stored) is taken off first.
 void CheckTorqueConstants(StepContext& ctx);
+/// Guided hand motion (plan.hand_guide, protocol 1.2's raw readout; motors off): the roll
+/// encoder's reading with the instrument at its reference, the jaw handle's ADC closed and open,
+/// the pedal's released and pressed. A retry starts the step's prompts again; readings that fail
+/// their check (span, travel) are prompted again up to plan.hand_attempts times, then refused.
+void CalibrateRollOffset(StepContext& ctx);
+void CalibrateJawSpan(StepContext& ctx);
+void CalibratePedalTravel(StepContext& ctx);
+/// The three above, in that order.
+void CalibrateHandSensors(StepContext& ctx);
 
 }  // namespace vesica::device::calibration

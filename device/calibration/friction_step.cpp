@@ -13,25 +13,30 @@ namespace {
 
 // Each commanded torque counts for as long as it stood (until the next command): on a host that
 // stalls, the cycles come unevenly, and a plain mean would weigh a catch-up burst of commands as
-// much as the command that stood through the stall.
+// much as the command that stood through the stall. A command the node cut (its joint state
+// names a limiter: the session's speed or current bound) did not stand as sent and is left out.
 struct Window {
   double lo = 0.0, hi = 0.0;  // position window
-  double torque_time = 0.0;   // integral of the commanded torque over time
+  double torque_time = 0.0;   // integral of the commanded torque over the time it stood
+  double time = 0.0;          // how long the counted commands stood
   int n = 0;
   double t0 = 0.0, p0 = 0.0, t1 = 0.0, p1 = 0.0, last_torque = 0.0;
-  void Add(double t, double p, double torque) {
+  bool last_limited = false;
+  void Add(double t, double p, double torque, bool limited) {
     if (n == 0) {
       t0 = t;
       p0 = p;
-    } else {
+    } else if (!last_limited) {
       torque_time += last_torque * (t - t1);
+      time += t - t1;
     }
     t1 = t;
     p1 = p;
     last_torque = torque;
+    last_limited = limited;
     ++n;
   }
-  double mean_torque() const { return t1 > t0 ? torque_time / (t1 - t0) : 0.0; }
+  double mean_torque() const { return time > 0.0 ? torque_time / time : 0.0; }
 };
 
 }  // namespace
@@ -79,7 +84,7 @@ void IdentifyFriction(StepContext& ctx) {
               if (!active[j]) continue;
               const double p = ctx.link.sample().position[j];
               if (!servo.arrived(j) && p >= w[j].lo && p <= w[j].hi)
-                w[j].Add(ctx.link.sample().t_s, p, servo.torque(j));
+                w[j].Add(ctx.link.sample().t_s, p, servo.torque(j), ctx.link.sample().limiter != fp::Limiter::None);
               done = done && servo.arrived(j);
             }
             return done;
@@ -88,7 +93,7 @@ void IdentifyFriction(StepContext& ctx) {
       ctx.RunFor(0.1);
       for (int j = 0; j < 3; ++j) {
         if (!active[j]) continue;
-        if (w[j].n < 20 || w[j].t1 <= w[j].t0)
+        if (w[j].n < 20 || w[j].time < 0.5 * (w[j].t1 - w[j].t0))
           throw CalibrationAbort(AbortReason::kMeasurement,
                                  "friction: joint " + std::to_string(j) + " sweep too short to measure");
         FrictionSegment s;

@@ -63,8 +63,9 @@ void CheckTorqueConstants(StepContext& ctx) {
     // Below a tenth of the fixture's stiffness there is no spring to speak of.
     if (!(slope > 0.1 * ctx.plan.reference_stiffness[j]))
       throw CalibrationAbort(AbortReason::kMeasurement,
-                             what + ": the holding torque does not rise with the position (is the reference load "
-                                    "fixture clamped on?)");
+                             what +
+                                 ": the holding torque does not rise with the position (is the reference load "
+                                 "fixture clamped on?)");
     r.torque_constant_ratio = ctx.plan.reference_stiffness[j] / slope;
     ctx.servo.MoveTo(j, centre, ctx.plan.move_speed[j]);
     ctx.RunUntil([&] { return ctx.servo.arrived(j); }, 20.0, what + ": did not return to the centre");

@@ -135,12 +135,12 @@ VESICA_FIELD(CurrentState, pitch, 4, WireType::I16, 0, 0, 1e-3, "A", -30, 30);
 VESICA_FIELD(CurrentState, insertion, 6, WireType::I16, 0, 0, 1e-3, "A", -30, 30);
 }  // namespace CurrentState
 namespace CalibrationCommand {
-VESICA_FIELD(CalibrationCommand, procedure, 0, WireType::U8, 0, 0, 1, "", 0, 3);
+VESICA_FIELD(CalibrationCommand, procedure, 0, WireType::U8, 0, 0, 1, "", 0, 4);
 VESICA_FIELD(CalibrationCommand, joint_mask, 1, WireType::U8, 0, 0, 1, "", 0, 7);
 VESICA_FIELD(CalibrationCommand, max_current, 2, WireType::U16, 0, 0, 1e-3, "A", 0, 30);
 }  // namespace CalibrationCommand
 namespace CalibrationProgress {
-VESICA_FIELD(CalibrationProgress, procedure, 0, WireType::U8, 0, 0, 1, "", 0, 3);
+VESICA_FIELD(CalibrationProgress, procedure, 0, WireType::U8, 0, 0, 1, "", 0, 4);
 VESICA_FIELD(CalibrationProgress, status, 1, WireType::U8, 0, 0, 1, "", 0, 4);
 VESICA_FIELD(CalibrationProgress, percent, 2, WireType::U8, 0, 0, 1, "%", 0, 100);
 VESICA_FIELD(CalibrationProgress, joint, 3, WireType::U8, 0, 0, 1, "", 0, 2);

@@ -10,7 +10,8 @@ namespace vesica::fp {
 inline constexpr std::uint8_t kProtocolMajor = 1;
 // Minor 1 adds the host-driven calibration session, the A/B calibration slots and their
 // parameters (docs/protocol.md sections 9 and 11).
-// Minor 2: the calibration session's own watchdog and speed bound (section 11).
+// Minor 2: the calibration session's own watchdog and speed bound, and the raw hand-sensor
+// readout for the guided hand steps (section 11).
 inline constexpr std::uint8_t kProtocolMinor = 2;
 inline constexpr int kJointCount = 3;  // actuated joints per arm: yaw, pitch, insertion
 
@@ -111,7 +112,9 @@ enum class AbortCode : std::uint32_t {
 
 // Session (minor 1): the host drives the motors with CurrentCommand inside the node's calibration
 // envelope; it ends in Save (kept) or anything else (the stored calibration is reloaded).
-enum class CalibrationProcedure : std::uint8_t { Abort = 0, FindIndex = 1, CurrentOffset = 2, Session = 3 };
+// HandSensors (protocol 1.2): inside a session, the node reports the raw roll, jaw handle and
+// pedal sensor readings until the session ends (docs/protocol.md section 11).
+enum class CalibrationProcedure : std::uint8_t { Abort = 0, FindIndex = 1, CurrentOffset = 2, Session = 3, HandSensors = 4 };
 enum class CalibrationStatus : std::uint8_t { Idle = 0, Running = 1, Done = 2, Failed = 3, Aborted = 4 };
 
 const char* to_string(NodeState s);

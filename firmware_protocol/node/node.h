@@ -35,7 +35,8 @@ class Node {
   // leave the last command in force longer than in operation; the speed bound keeps what it can
   // do in that time small (docs/protocol.md section 11, "Watchdog in a calibration session").
   static constexpr std::uint32_t kSessionWatchdog_us = 250'000;
-  static constexpr float kSessionSpeedFraction = 0.25f;  // of max_velocity: 1.5 rad/s, 0.25 m/s
+  static constexpr float kSessionSpeedFraction = 0.5f;  // of max_velocity: 3 rad/s, 0.5 m/s
+  static constexpr std::uint32_t kHandSensorPeriod_us = 20'000;  // raw hand-sensor readout, 50 Hz
 
   Node(Hw& hw, std::uint32_t serial) : hw_(hw), serial_(serial) {}
 
@@ -126,6 +127,8 @@ class Node {
   std::uint64_t next_cal_progress_us_ = 0;
   // Host-driven calibration session (CalibrationProcedure::Session).
   bool session_open_ = false;
+  bool hand_readout_ = false;  // protocol 1.2: raw hand sensors reported while the session lasts
+  std::uint64_t next_hand_us_ = 0;
   std::uint8_t session_mask_ = 0;
   float session_max_current_ = 0;
   // Calibration slots as found at boot / after the last save.
@@ -152,6 +155,7 @@ void Node<Hw>::boot(std::uint64_t now_us) {
   command_sequence_.reset();
   cal_status_ = CalibrationStatus::Idle;
   session_open_ = false;
+  hand_readout_ = false;
   faults_.clear_latch();
 
   const StorageResult loaded = load_parameters();
@@ -328,6 +332,16 @@ void Node<Hw>::handle_calibration(const CalibrationCommand& m, std::uint64_t now
     if (session_open_) end_session(CalibrationStatus::Aborted);
     return;
   }
+  if (m.procedure == CalibrationProcedure::HandSensors) {
+    // Inside a session only: nothing moves, the node reports what the hand sensors read.
+    if (!session_open_) {
+      queue(CalibrationProgress{node_id_, m.procedure, CalibrationStatus::Failed, 0, 0, -1});
+      return;
+    }
+    hand_readout_ = true;
+    next_hand_us_ = now_us;
+    return;
+  }
   // Calibration moves motors on its own authority: only pre-operational, disabled and fault-free.
   if (nmt_state_ != NodeState::PreOperational || enabled_ || faults_.latched() != FaultCode::None ||
       m.joint_mask == 0 || cal_status_ == CalibrationStatus::Running ||
@@ -473,6 +487,12 @@ void Node<Hw>::tick(std::uint64_t now_us) {
     send_heartbeat();
     next_heartbeat_us_ = now_us + 1000ull * params_.u32(param::kHeartbeatPeriod_ms);
   }
+  if (hand_readout_ && session_open_ && now_us >= next_hand_us_) {
+    next_hand_us_ = now_us + kHandSensorPeriod_us;
+    const std::int32_t raw[3] = {s.roll_raw, s.jaw_raw, s.pedal_raw};
+    for (std::uint8_t k = 0; k < 3; ++k)
+      queue(CalibrationProgress{node_id_, CalibrationProcedure::HandSensors, CalibrationStatus::Running, 0, k, raw[k]});
+  }
   if (nmt_state_ != NodeState::Stopped && now_us >= next_aux_us_) {
     next_aux_us_ = now_us + 1000ull * params_.u32(param::kAuxPeriod_ms);
     queue(AuxState{node_id_, aux_counter_++, s.pedal, s.estop_input, s.handle_button, clampf(s.roll_rad, -3.1416f, 3.1416f),
@@ -575,6 +595,7 @@ JointArray Node<Hw>::session_output(const HardwareSample& s) {
 template <VESICA_NODE_HARDWARE Hw>
 void Node<Hw>::end_session(CalibrationStatus status) {
   session_open_ = false;
+  hand_readout_ = false;
   command_ = JointArray{};
   applied_ = JointArray{};
   hw_.apply_currents(applied_);

@@ -58,6 +58,7 @@ const char* name(CalibrationProcedure p) {
     case CalibrationProcedure::FindIndex: return "find_index";
     case CalibrationProcedure::CurrentOffset: return "current_offset";
     case CalibrationProcedure::Session: return "session";
+    case CalibrationProcedure::HandSensors: return "hand_sensors";
   }
   return nullptr;
 }

@@ -36,7 +36,8 @@ TEST_P(TorqueConstantCheck, RecoversTheMotorsTorqueConstantAgainstTheReferenceLo
   ASSERT_EQ(r.abort, AbortReason::kNone) << r.failed_step << ": " << r.message;
   const fp::ParameterStore& p = rig.emulator->node().parameters();
   for (int j = 0; j < 3; ++j) {
-    const double truth = rig.truth.torque_constant_ratio(j, p.f32(fp::param::kTorqueConstant + static_cast<std::uint16_t>(j)));
+    const double truth =
+        rig.truth.torque_constant_ratio(j, p.f32(fp::param::kTorqueConstant + static_cast<std::uint16_t>(j)));
     ASSERT_EQ(r.joint[j].load_holds.size(), 5u);
     // Within 1 % of the truth (docs/calibration.md: the check's tolerance and why).
     EXPECT_NEAR(r.joint[j].torque_constant_ratio, truth, 0.01 * truth) << "joint " << j;
