@@ -232,7 +232,9 @@ CalibrationPanel::CalibrationPanel(const c::ToolOptions& options, QWidget* paren
   });
 
   CalibrationPanelHandlers handlers;
-  handlers.progress = [this](int arm, const std::string& step, double f, double eta) { ShowProgress(arm, step, f, eta); };
+  handlers.progress = [this](int arm, const std::string& step, double f, double eta) {
+    ShowProgress(arm, step, f, eta);
+  };
   handlers.note = [this](const std::string& line) { s_->log->appendPlainText(Q(line)); };
   handlers.ask = [this](const c::MotionNotice& notice, std::function<void(bool)> answer) {
     auto* box = new QMessageBox(QMessageBox::Question, "Calibrate arms: the arm will move", Q(MotionQuestion(notice)),
@@ -351,7 +353,8 @@ void CalibrationPanel::Run(const std::string& command, int arm) {
       o = c::ToolSession::Failure(c::kExitInternal, std::string("internal error: ") + e.what());
     }
     st.outcome = std::move(o);
-    QMetaObject::invokeMethod(this, [this] { Finished(); }, Qt::QueuedConnection);
+    QMetaObject::invokeMethod(
+        this, [this] { Finished(); }, Qt::QueuedConnection);
   });
 }
 
@@ -371,8 +374,8 @@ void CalibrationPanel::ShowProgress(int arm, const std::string& step, double fra
   }
   s.step_progress->setValue(static_cast<int>(std::lround(1000 * std::clamp(fraction, 0.0, 1.0))));
   s.step_label->setText(Q("arm " + std::to_string(arm) + " " + step + ": " +
-                          std::to_string(static_cast<int>(std::lround(100 * fraction))) + " %, " +
-                          c::FormatEta(eta_s) + " left"));
+                          std::to_string(static_cast<int>(std::lround(100 * fraction))) + " %, " + c::FormatEta(eta_s) +
+                          " left"));
 }
 
 void CalibrationPanel::Finished() {

@@ -9,8 +9,7 @@
 
 namespace vesica::app {
 
-CalibrationPanelUi::CalibrationPanelUi(QObject* gui, CalibrationPanelHandlers handlers,
-                                       const std::atomic<bool>* abort)
+CalibrationPanelUi::CalibrationPanelUi(QObject* gui, CalibrationPanelHandlers handlers, const std::atomic<bool>* abort)
     : gui_(gui), handlers_(std::move(handlers)), abort_(abort) {}
 
 void CalibrationPanelUi::Progress(int arm, const std::string& step, double fraction, double eta_s) {
@@ -20,7 +19,8 @@ void CalibrationPanelUi::Progress(int arm, const std::string& step, double fract
 }
 
 void CalibrationPanelUi::Note(const std::string& line) {
-  QMetaObject::invokeMethod(gui_, [h = handlers_.note, line] { h(line); }, Qt::QueuedConnection);
+  QMetaObject::invokeMethod(
+      gui_, [h = handlers_.note, line] { h(line); }, Qt::QueuedConnection);
 }
 
 bool CalibrationPanelUi::ConfirmMotion(const calibrate::MotionNotice& notice) {
@@ -63,7 +63,9 @@ calibrate::HandAnswer CalibrationPanelUi::GuideHand(const calibrate::HandPrompt&
       show_live = true;
     }
   }
-  if (fresh) QMetaObject::invokeMethod(gui_, [h = handlers_.hand_prompt, prompt] { h(prompt); }, Qt::QueuedConnection);
+  if (fresh)
+    QMetaObject::invokeMethod(
+        gui_, [h = handlers_.hand_prompt, prompt] { h(prompt); }, Qt::QueuedConnection);
   if (show_live || answer)
     QMetaObject::invokeMethod(
         gui_, [h = handlers_.hand_live, prompt, live_value] { h(prompt, live_value); }, Qt::QueuedConnection);

@@ -3,10 +3,10 @@
 // time is the host's cost of simulating the arms and running the procedures; `bus_s` is how long
 // the same calibration keeps real arms busy.
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 #include "app/calibrate/calibration_report.h"
 #include "app/calibrate/calibration_run.h"

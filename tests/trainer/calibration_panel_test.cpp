@@ -5,6 +5,8 @@
 // disabled on the calibration stored before. In the trainer window the panel takes the arms from
 // the session (the bridge lets go of vesica-armsim's ports) and gives them back when it closes.
 
+#include "app/trainer/calibration_panel.h"
+
 #include <gtest/gtest.h>
 
 #include <QAction>
@@ -34,7 +36,6 @@
 #include "app/scenario/scenario_loader.h"
 #include "app/session/dissection_setup.h"
 #include "app/trainer/calibration_bus.h"
-#include "app/trainer/calibration_panel.h"
 #include "app/trainer/calibration_panel_ui.h"
 #include "app/trainer/trainer_window.h"
 #include "device/calibration/calibration_abort.h"
@@ -52,8 +53,8 @@ constexpr const char* kJoint[3] = {"yaw", "pitch", "insertion"};
 constexpr int kCommandTimeoutMs = 300000;  // a loaded two-core host: generous, never a speed test
 
 std::string FreshDir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() /
-                 ("vesica_calibration_panel_" + std::to_string(::getpid()) + "_" + name);
+  const auto d =
+      std::filesystem::temp_directory_path() / ("vesica_calibration_panel_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(d);
   return d.string();
 }
