@@ -1,11 +1,12 @@
 #include "app/patient/label_table.h"
 
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <stdexcept>
-#include <toml++/toml.h>
 
 #include "physics/patient/patient_labels.h"
 
@@ -88,7 +89,8 @@ LabelTable ReadLabelTable(const std::filesystem::path& file) {
     const auto value = (*entry)["value"].value<std::int64_t>();
     const auto name = (*entry)["name"].value<std::string>();
     if (!value || !name) throw std::runtime_error(at + ": needs an integer 'value' and a string 'name'");
-    if (*value < 0 || *value > 255) throw std::runtime_error(at + ": value " + std::to_string(*value) + " is outside 0-255");
+    if (*value < 0 || *value > 255)
+      throw std::runtime_error(at + ": value " + std::to_string(*value) + " is outside 0-255");
     if (!seen.insert(static_cast<int>(*value)).second)
       throw std::runtime_error(at + ": value " + std::to_string(*value) + " is given twice");
     if (!LabelValueOfName(*name)) throw std::runtime_error(at + ": unknown structure name '" + *name + "'");

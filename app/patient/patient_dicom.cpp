@@ -116,12 +116,17 @@ PatientVolume ReadDicomSeries(const fs::path& directory) {
   const Slice& first = slices.front();
   for (const Slice& s : slices) {
     if (s.rows != first.rows || s.columns != first.columns)
-      throw PatientFileError(s.file.string() + ": slice of " + std::to_string(s.columns) + " x " + std::to_string(s.rows) +
-                             " pixels in a series of " + std::to_string(first.columns) + " x " + std::to_string(first.rows));
-    if ((s.row_direction - first.row_direction).norm() > 1e-4 || (s.column_direction - first.column_direction).norm() > 1e-4)
-      throw PatientFileError(s.file.string() + ": its orientation differs from " + first.file.filename().string() + "'s");
-    if (std::abs(s.row_spacing_mm - first.row_spacing_mm) > 1e-4 || std::abs(s.column_spacing_mm - first.column_spacing_mm) > 1e-4)
-      throw PatientFileError(s.file.string() + ": its pixel spacing differs from " + first.file.filename().string() + "'s");
+      throw PatientFileError(s.file.string() + ": slice of " + std::to_string(s.columns) + " x " +
+                             std::to_string(s.rows) + " pixels in a series of " + std::to_string(first.columns) +
+                             " x " + std::to_string(first.rows));
+    if ((s.row_direction - first.row_direction).norm() > 1e-4 ||
+        (s.column_direction - first.column_direction).norm() > 1e-4)
+      throw PatientFileError(s.file.string() + ": its orientation differs from " + first.file.filename().string() +
+                             "'s");
+    if (std::abs(s.row_spacing_mm - first.row_spacing_mm) > 1e-4 ||
+        std::abs(s.column_spacing_mm - first.column_spacing_mm) > 1e-4)
+      throw PatientFileError(s.file.string() + ": its pixel spacing differs from " + first.file.filename().string() +
+                             "'s");
   }
   const Eigen::Vector3d normal = first.row_direction.cross(first.column_direction);
   std::sort(slices.begin(), slices.end(),
@@ -134,8 +139,9 @@ PatientVolume ReadDicomSeries(const fs::path& directory) {
     const Eigen::Vector3d step = slices[k].position_mm - slices[k - 1].position_mm;
     if (std::abs(step.dot(normal) - gap) > 0.01 * gap || (step - step.dot(normal) * normal).norm() > 0.01 * gap)
       throw PatientFileError(directory.string() + ": missing or uneven slices between " +
-                             slices[k - 1].file.filename().string() + " and " + slices[k].file.filename().string() + " (" +
-                             Decimal(step.dot(normal)) + " mm apart, the series' spacing is " + Decimal(gap) + " mm)");
+                             slices[k - 1].file.filename().string() + " and " + slices[k].file.filename().string() +
+                             " (" + Decimal(step.dot(normal)) + " mm apart, the series' spacing is " + Decimal(gap) +
+                             " mm)");
   }
   PatientVolume out;
   physics::LabelVolume& grid = out.labels;
@@ -187,10 +193,11 @@ void WriteDicomSeries(const PatientVolume& volume, const fs::path& directory) {
     Element(data, 0x0020, 0x000D, "UI", uid_root + "1");
     Element(data, 0x0020, 0x000E, "UI", uid_root + "2");
     Element(data, 0x0020, 0x0013, "IS", std::to_string(k + 1));
-    Element(data, 0x0020, 0x0032, "DS", Decimal(position.x()) + "\\" + Decimal(position.y()) + "\\" + Decimal(position.z()));
+    Element(data, 0x0020, 0x0032, "DS",
+            Decimal(position.x()) + "\\" + Decimal(position.y()) + "\\" + Decimal(position.z()));
     Element(data, 0x0020, 0x0037, "DS",
-            Decimal(lps(0, 0)) + "\\" + Decimal(lps(1, 0)) + "\\" + Decimal(lps(2, 0)) + "\\" + Decimal(lps(0, 1)) + "\\" +
-                Decimal(lps(1, 1)) + "\\" + Decimal(lps(2, 1)));
+            Decimal(lps(0, 0)) + "\\" + Decimal(lps(1, 0)) + "\\" + Decimal(lps(2, 0)) + "\\" + Decimal(lps(0, 1)) +
+                "\\" + Decimal(lps(1, 1)) + "\\" + Decimal(lps(2, 1)));
     Element(data, 0x0028, 0x0002, "US", U16(1));
     Element(data, 0x0028, 0x0004, "CS", "MONOCHROME2");
     Element(data, 0x0028, 0x0010, "US", U16(static_cast<std::uint16_t>(g.dims[1])));

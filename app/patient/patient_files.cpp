@@ -1,14 +1,14 @@
 #include "app/patient/patient_files.h"
 
+#include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNIFTIImageReader.h>
 #include <vtkNIFTIImageWriter.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
-#include <vtkDataArray.h>
-#include <vtkTypeUInt8Array.h>
 #include <vtkTypeInt16Array.h>
+#include <vtkTypeUInt8Array.h>
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -80,7 +80,8 @@ ReadImage Read(const fs::path& file) {
   if (reader->GetErrorCode() != 0 || dims[0] < 1 || dims[1] < 1 || dims[2] < 1 ||
       !out.image->GetPointData()->GetScalars())
     Fail(file, "cannot be read (truncated or damaged)");
-  if (reader->GetTimeDimension() > 1) Fail(file, "has " + std::to_string(reader->GetTimeDimension()) + " time points; a CT has one");
+  if (reader->GetTimeDimension() > 1)
+    Fail(file, "has " + std::to_string(reader->GetTimeDimension()) + " time points; a CT has one");
   if (out.image->GetNumberOfScalarComponents() != 1) Fail(file, "has more than one value per voxel");
   double spacing[3], origin[3];
   out.image->GetSpacing(spacing);
@@ -159,7 +160,8 @@ void CheckSameGrid(const physics::LabelVolume& a, const std::string& a_name, con
     o << 1000 * s.x() << " x " << 1000 * s.y() << " x " << 1000 * s.z() << " mm";
     return o.str();
   };
-  if ((a.spacing_m - b.spacing_m).norm() > 1e-6) throw PatientFileError(both + ": voxel sizes differ (" + mm(a.spacing_m) + " vs " + mm(b.spacing_m) + ")");
+  if ((a.spacing_m - b.spacing_m).norm() > 1e-6)
+    throw PatientFileError(both + ": voxel sizes differ (" + mm(a.spacing_m) + " vs " + mm(b.spacing_m) + ")");
   if ((a.direction - b.direction).norm() > 1e-4) throw PatientFileError(both + ": orientations differ");
   if ((a.origin_m - b.origin_m).norm() > 1e-5) throw PatientFileError(both + ": origins differ");
 }
@@ -182,7 +184,8 @@ void RemapLabels(physics::LabelVolume& labels, const LabelTable& table, const st
   }
   if (!unknown.empty()) {
     std::string list;
-    for (const auto& [value, count] : unknown) list += (list.empty() ? "" : ", ") + std::to_string(value) + " (" + std::to_string(count) + " voxels)";
+    for (const auto& [value, count] : unknown)
+      list += (list.empty() ? "" : ", ") + std::to_string(value) + " (" + std::to_string(count) + " voxels)";
     throw PatientFileError(labels_name + ": labels not in the label table: " + list);
   }
   if (!liver) throw PatientFileError(labels_name + ": the label map has no liver");

@@ -58,8 +58,8 @@ physics::TriangleMesh MeshInBox(const physics::LabelVolume& volume, const std::a
     for (int j = box.lo[1]; j <= box.hi[1]; ++j)
       for (int i = box.lo[0]; i <= box.hi[0]; ++i)
         if (in[volume.At(i, j, k)])
-          m[(i - box.lo[0] + 1) +
-            static_cast<std::size_t>(nx) * ((j - box.lo[1] + 1) + static_cast<std::size_t>(ny) * (k - box.lo[2] + 1))] = 1;
+          m[(i - box.lo[0] + 1) + static_cast<std::size_t>(nx) *
+                                      ((j - box.lo[1] + 1) + static_cast<std::size_t>(ny) * (k - box.lo[2] + 1))] = 1;
   vtkNew<vtkImageData> image;
   image->SetDimensions(nx, ny, nz);
   image->SetSpacing(volume.spacing_m.x(), volume.spacing_m.y(), volume.spacing_m.z());
@@ -108,7 +108,8 @@ physics::TriangleMesh MeshInBox(const physics::LabelVolume& volume, const std::a
   vtkIdType count = 0;
   const vtkIdType* ids = nullptr;
   for (vtkIdType f = 0; polys->GetNextCell(count, ids); ++f)
-    mesh.triangles.row(f) << static_cast<int>(ids[0]), static_cast<int>(ids[flip ? 2 : 1]), static_cast<int>(ids[flip ? 1 : 2]);
+    mesh.triangles.row(f) << static_cast<int>(ids[0]), static_cast<int>(ids[flip ? 2 : 1]),
+        static_cast<int>(ids[flip ? 1 : 2]);
   return mesh;
 }
 
@@ -145,7 +146,8 @@ std::vector<OrganSurface> MeshPatient(const physics::LabelVolume& volume, const 
   for (int side = 0; side < 2; ++side)
     for (int n = 1; n <= label::kMaxRib; ++n)
       organs.push_back({std::string("rib_") + (side ? "l" : "r") + std::to_string(n),
-                        {label::Rib(side == 1, n), label::Cartilage(side == 1, n)}, {}});
+                        {label::Rib(side == 1, n), label::Cartilage(side == 1, n)},
+                        {}});
   std::vector<OrganSurface> out;
   for (OrganSurface& organ : organs) {
     Box box;

@@ -15,7 +15,7 @@ namespace vesica::app::patient {
 
 struct MeshingOptions {
   double decimate_fraction = 0.5;  ///< share of triangles removed (topology kept)
-  int smoothing_iterations = 15;     ///< windowed-sinc smoothing of the marching-cubes mesh
+  int smoothing_iterations = 15;   ///< windowed-sinc smoothing of the marching-cubes mesh
   double smoothing_passband = 0.1;
 };
 
@@ -27,12 +27,14 @@ struct OrganSurface {
 
 /// One organ's surface: the boundary of the voxels whose label is in `labels`. Throws
 /// std::invalid_argument naming the organ when it has no voxel.
-[[nodiscard]] physics::TriangleMesh MeshLabels(const physics::LabelVolume& volume, const std::vector<std::uint8_t>& labels,
-                                               const std::string& organ, const MeshingOptions& options = {});
+[[nodiscard]] physics::TriangleMesh MeshLabels(const physics::LabelVolume& volume,
+                                               const std::vector<std::uint8_t>& labels, const std::string& organ,
+                                               const MeshingOptions& options = {});
 
 /// The surfaces the biopsy scene draws: skin, lungs, diaphragm, liver (capsule and tumour inside),
 /// tumour, gallbladder, colon, spine, sternum, each rib with its cartilage; organs absent from the
 /// label map are left out.
-[[nodiscard]] std::vector<OrganSurface> MeshPatient(const physics::LabelVolume& volume, const MeshingOptions& options = {});
+[[nodiscard]] std::vector<OrganSurface> MeshPatient(const physics::LabelVolume& volume,
+                                                    const MeshingOptions& options = {});
 
 }  // namespace vesica::app::patient

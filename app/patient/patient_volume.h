@@ -10,8 +10,8 @@
 namespace vesica::app::patient {
 
 struct PatientVolume {
-  physics::LabelVolume labels;      ///< grid, orientation and the label of each voxel
-  std::vector<std::int16_t> hu;     ///< Hounsfield units, same grid (i fastest)
+  physics::LabelVolume labels;   ///< grid, orientation and the label of each voxel
+  std::vector<std::int16_t> hu;  ///< Hounsfield units, same grid (i fastest)
 };
 
 }  // namespace vesica::app::patient

@@ -64,10 +64,12 @@ Eigen::Vector3d RibPoint(int n, bool left, double theta) {
 // Below the cage, the abdomen inside its wall.
 std::pair<double, double> InteriorAxes(double z) {
   std::array<double, 12> mid{};
-  for (int n = 1; n <= 12; ++n) mid[static_cast<std::size_t>(n - 1)] = RibHead(n) - Ribs()[static_cast<std::size_t>(n - 1)].drop / 2;
+  for (int n = 1; n <= 12; ++n)
+    mid[static_cast<std::size_t>(n - 1)] = RibHead(n) - Ribs()[static_cast<std::size_t>(n - 1)].drop / 2;
   double a = Ribs()[0].a, b = Ribs()[0].b;
   if (z <= mid[11]) {
-    const double abdomen_a = kBodyA - kSkin - kFat - kAbdominalMuscle, abdomen_b = kBodyB - kSkin - kFat - kAbdominalMuscle;
+    const double abdomen_a = kBodyA - kSkin - kFat - kAbdominalMuscle,
+                 abdomen_b = kBodyB - kSkin - kFat - kAbdominalMuscle;
     const double w = std::clamp((mid[11] - z) / 0.03, 0.0, 1.0);
     a = (1 - w) * (Ribs()[11].a - 0.007) + w * abdomen_a;
     b = (1 - w) * (Ribs()[11].b - 0.007) + w * abdomen_b;
@@ -75,7 +77,8 @@ std::pair<double, double> InteriorAxes(double z) {
   }
   for (int n = 1; n < 12; ++n)
     if (z <= mid[static_cast<std::size_t>(n - 1)] && z >= mid[static_cast<std::size_t>(n)]) {
-      const double w = (mid[static_cast<std::size_t>(n - 1)] - z) / (mid[static_cast<std::size_t>(n - 1)] - mid[static_cast<std::size_t>(n)]);
+      const double w = (mid[static_cast<std::size_t>(n - 1)] - z) /
+                       (mid[static_cast<std::size_t>(n - 1)] - mid[static_cast<std::size_t>(n)]);
       a = (1 - w) * Ribs()[static_cast<std::size_t>(n - 1)].a + w * Ribs()[static_cast<std::size_t>(n)].a;
       b = (1 - w) * Ribs()[static_cast<std::size_t>(n - 1)].b + w * Ribs()[static_cast<std::size_t>(n)].b;
     }
@@ -85,8 +88,8 @@ std::pair<double, double> InteriorAxes(double z) {
 // The diaphragm's mid-surface z = h(x, y): a higher right dome (over the liver) and a lower left
 // one, falling to the costal margin laterally and to the crura on the spine posteriorly.
 double DiaphragmHeight(double x, double y) {
-  const double domes = 0.005 + 0.030 * std::exp(-std::pow((x + 0.075) / 0.06, 2)) +
-                       0.018 * std::exp(-std::pow((x - 0.07) / 0.055, 2));
+  const double domes =
+      0.005 + 0.030 * std::exp(-std::pow((x + 0.075) / 0.06, 2)) + 0.018 * std::exp(-std::pow((x - 0.07) / 0.055, 2));
   const double lateral = std::max(0.0, std::abs(x) - 0.06);
   const double posterior = std::min(0.0, y + 0.02);
   // The crura: beside the spine the diaphragm runs down the vertebral bodies to L1-L3.
@@ -114,7 +117,8 @@ bool InSpine(double x, double y) {
 }
 
 bool InLiverShape(double x, double y, double z) {
-  const bool ellipsoid = std::pow((x + 0.045) / 0.11, 2) + std::pow((y - 0.01) / 0.085, 2) + std::pow((z + 0.03) / 0.09, 2) < 1.0;
+  const bool ellipsoid =
+      std::pow((x + 0.045) / 0.11, 2) + std::pow((y - 0.01) / 0.085, 2) + std::pow((z + 0.03) / 0.09, 2) < 1.0;
   const bool above_inferior_border = z > -0.12 + 0.45 * (x + 0.10);
   return ellipsoid && above_inferior_border && x < 0.10 && AboveDiaphragm(x, y, z) < -kDiaphragmHalfThickness;
 }
@@ -134,23 +138,40 @@ double DistanceToColonAxis(const Eigen::Vector3d& p) {
 std::int16_t Hounsfield(std::uint8_t l) {
   // Unenhanced CT, typical values (docs/biopsy-patient.md).
   switch (l) {
-    case label::kAir: return -1000;
-    case label::kSkin: return 30;
-    case label::kFat: return -100;
-    case label::kMuscle: return 45;
-    case label::kSpine: return 400;
-    case label::kSternum: return 450;
-    case label::kLung: return -850;
-    case label::kCostophrenicRecess: return -500;
-    case label::kDiaphragmMuscle: return 50;
-    case label::kDiaphragmTendon: return 70;
-    case label::kLiver: return 60;
-    case label::kLiverCapsule: return 75;
-    case label::kTumour: return 30;
-    case label::kGallbladder: return 10;
-    case label::kColon: return 40;
-    case label::kSoftTissue: return 40;
-    default: break;
+    case label::kAir:
+      return -1000;
+    case label::kSkin:
+      return 30;
+    case label::kFat:
+      return -100;
+    case label::kMuscle:
+      return 45;
+    case label::kSpine:
+      return 400;
+    case label::kSternum:
+      return 450;
+    case label::kLung:
+      return -850;
+    case label::kCostophrenicRecess:
+      return -500;
+    case label::kDiaphragmMuscle:
+      return 50;
+    case label::kDiaphragmTendon:
+      return 70;
+    case label::kLiver:
+      return 60;
+    case label::kLiverCapsule:
+      return 75;
+    case label::kTumour:
+      return 30;
+    case label::kGallbladder:
+      return 10;
+    case label::kColon:
+      return 40;
+    case label::kSoftTissue:
+      return 40;
+    default:
+      break;
   }
   const label::RibOf rib = label::RibOfLabel(l);
   if (rib.number == 0) return 0;
@@ -199,16 +220,17 @@ PatientVolume GenerateSyntheticPatient(const SyntheticPatientOptions& options) {
         } else if (std::abs(above) <= kDiaphragmHalfThickness) {
           l = InTendon(x, y) ? label::kDiaphragmTendon : label::kDiaphragmMuscle;
         } else if (above > 0.0) {  // thorax
-          const bool mediastinum =
-              std::abs(x - 0.005) < 0.035 ||
-              std::pow((x - heart_centre.x()) / 0.065, 2) + std::pow((y - heart_centre.y()) / 0.05, 2) +
-                      std::pow((z - heart_centre.z()) / 0.06, 2) < 1.0;
+          const bool mediastinum = std::abs(x - 0.005) < 0.035 || std::pow((x - heart_centre.x()) / 0.065, 2) +
+                                                                          std::pow((y - heart_centre.y()) / 0.05, 2) +
+                                                                          std::pow((z - heart_centre.z()) / 0.06, 2) <
+                                                                      1.0;
           if (!mediastinum) {
             const bool recess = above < kDiaphragmHalfThickness + 0.015 && interior > 1.0 - 0.02 / std::min(ia, ib);
             l = recess ? label::kCostophrenicRecess : label::kLung;
           }
         } else {  // abdomen
-          if (std::pow((x + 0.035) / 0.018, 2) + std::pow((y - 0.05) / 0.04, 2) + std::pow((z + 0.095) / 0.016, 2) < 1.0)
+          if (std::pow((x + 0.035) / 0.018, 2) + std::pow((y - 0.05) / 0.04, 2) + std::pow((z + 0.095) / 0.016, 2) <
+              1.0)
             l = label::kGallbladder;
           else if (InLiverShape(x, y, z))
             l = (p - tumour_centre).norm() < tumour.radius_m ? label::kTumour : label::kLiver;
@@ -228,9 +250,12 @@ PatientVolume GenerateSyntheticPatient(const SyntheticPatientOptions& options) {
     const double reach = std::max(half_height, half_radial);
     const Eigen::Vector3d lo = to_index * (c - Eigen::Vector3d::Constant(reach) - v.origin_m);
     const Eigen::Vector3d hi = to_index * (c + Eigen::Vector3d::Constant(reach) - v.origin_m);
-    for (int k = std::max(0, static_cast<int>(std::floor(std::min(lo.z(), hi.z())))); k <= std::min(v.dims[2] - 1, static_cast<int>(std::ceil(std::max(lo.z(), hi.z())))); ++k)
-      for (int j = std::max(0, static_cast<int>(std::floor(std::min(lo.y(), hi.y())))); j <= std::min(v.dims[1] - 1, static_cast<int>(std::ceil(std::max(lo.y(), hi.y())))); ++j)
-        for (int i = std::max(0, static_cast<int>(std::floor(std::min(lo.x(), hi.x())))); i <= std::min(v.dims[0] - 1, static_cast<int>(std::ceil(std::max(lo.x(), hi.x())))); ++i) {
+    for (int k = std::max(0, static_cast<int>(std::floor(std::min(lo.z(), hi.z()))));
+         k <= std::min(v.dims[2] - 1, static_cast<int>(std::ceil(std::max(lo.z(), hi.z())))); ++k)
+      for (int j = std::max(0, static_cast<int>(std::floor(std::min(lo.y(), hi.y()))));
+           j <= std::min(v.dims[1] - 1, static_cast<int>(std::ceil(std::max(lo.y(), hi.y())))); ++j)
+        for (int i = std::max(0, static_cast<int>(std::floor(std::min(lo.x(), hi.x()))));
+             i <= std::min(v.dims[0] - 1, static_cast<int>(std::ceil(std::max(lo.x(), hi.x())))); ++i) {
           const Eigen::Vector3d d = v.Position(i, j, k) - c;
           if (std::pow(d.z() / half_height, 2) + (d.x() * d.x() + d.y() * d.y()) / (half_radial * half_radial) <= 1.0)
             write(v.labels[v.Index(i, j, k)]);
@@ -252,7 +277,8 @@ PatientVolume GenerateSyntheticPatient(const SyntheticPatientOptions& options) {
         if (!bone) continue;
         const Eigen::Vector3d inward = -Eigen::Vector3d(c.x(), c.y() - kCageCentreY, 0.0).normalized();
         stamp(c + Eigen::Vector3d(0, 0, -0.0085) + 0.001 * inward, 0.002, 0.002, [&](std::uint8_t& l) {
-          if (label::RibOfLabel(l).number == 0 && l != label::kSpine && l != label::kSternum) l = label::Bundle(left, n);
+          if (label::RibOfLabel(l).number == 0 && l != label::kSpine && l != label::kSternum)
+            l = label::Bundle(left, n);
         });
       }
     }

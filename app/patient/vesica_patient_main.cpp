@@ -44,8 +44,9 @@ int main(int argc, char** argv) {
     std::cout << "ribs " << model->ribs.size() << "; diaphragm lattice " << model->diaphragm.lattice.size()
               << " elements, tendon " << model->diaphragm.tendon.size() << ", fixed at the spine "
               << model->diaphragm.spine_attachment.size() << ", tendon travel before the crura move "
-              << model->diaphragm.max_tendon_displacement_m * 1000 << " mm; liver lattice " << model->liver.lattice.size()
-              << " elements, " << model->liver.coupling.size() << " coupled to the diaphragm\n"
+              << model->diaphragm.max_tendon_displacement_m * 1000 << " mm; liver lattice "
+              << model->liver.lattice.size() << " elements, " << model->liver.coupling.size()
+              << " coupled to the diaphragm\n"
               << "written to " << output_dir << " in " << seconds << " s\n";
   } catch (const std::exception& e) {
     std::cerr << "vesica-patient: " << e.what() << "\n";

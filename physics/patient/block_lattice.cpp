@@ -56,7 +56,8 @@ BlockLattice BuildBlockLattice(const LabelVolume& volume, int block_voxels,
 }
 
 void BlockLattice::LinkInto(ChainMail& mail, const LabelVolume& volume, int connectivity) const {
-  if (connectivity != 6 && connectivity != 26) throw std::invalid_argument("block lattice: connectivity must be 6 or 26");
+  if (connectivity != 6 && connectivity != 26)
+    throw std::invalid_argument("block lattice: connectivity must be 6 or 26");
   const Eigen::Vector3d block = volume.spacing_m * block_voxels;
   const auto& bd = block_dims;
   for (int e = 0; e < size(); ++e) {
@@ -83,7 +84,8 @@ void BlockLattice::LinkInto(ChainMail& mail, const LabelVolume& volume, int conn
 Eigen::Vector3d LatticeEmbedding::Displacement(std::size_t p, const std::vector<Eigen::Vector3d>& u) const {
   Eigen::Vector3d d = Eigen::Vector3d::Zero();
   for (int w = first[p]; w < first[p + 1]; ++w)
-    d += static_cast<double>(weight[static_cast<std::size_t>(w)]) * u[static_cast<std::size_t>(element[static_cast<std::size_t>(w)])];
+    d += static_cast<double>(weight[static_cast<std::size_t>(w)]) *
+         u[static_cast<std::size_t>(element[static_cast<std::size_t>(w)])];
   return d;
 }
 

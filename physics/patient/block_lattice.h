@@ -18,11 +18,11 @@ namespace vesica::physics {
 struct BlockLattice {
   int block_voxels = 1;
   std::array<int, 3> block_dims{0, 0, 0};
-  std::vector<int> element_of_block;          ///< -1 where the cube holds none of the organ
-  std::vector<std::array<int, 3>> block_of;   ///< per element, its cube (bi, bj, bk)
-  std::vector<Eigen::Vector3d> rest_m;        ///< per element, centroid of its voxels
-  std::vector<int> voxel_count;               ///< per element
-  std::vector<int> neighbour_count;           ///< per element, linked elements (26 inside the organ)
+  std::vector<int> element_of_block;         ///< -1 where the cube holds none of the organ
+  std::vector<std::array<int, 3>> block_of;  ///< per element, its cube (bi, bj, bk)
+  std::vector<Eigen::Vector3d> rest_m;       ///< per element, centroid of its voxels
+  std::vector<int> voxel_count;              ///< per element
+  std::vector<int> neighbour_count;          ///< per element, linked elements (26 inside the organ)
 
   [[nodiscard]] int size() const { return static_cast<int>(rest_m.size()); }
   [[nodiscard]] int ElementOfVoxel(int i, int j, int k) const;

@@ -81,7 +81,8 @@ void BreathingPatient::MoveLiver() {
   std::fill(u_liver_.begin(), u_liver_.end(), Eigen::Vector3d::Zero());
   // Each coupled element sits where its coupling spring (to the diaphragm above it) balances the
   // liver's support: k_c (u_dia - u) = k_s u.
-  const double share = p.coupling_stiffness_N_per_m / (p.coupling_stiffness_N_per_m + p.liver_support_stiffness_N_per_m);
+  const double share =
+      p.coupling_stiffness_N_per_m / (p.coupling_stiffness_N_per_m + p.liver_support_stiffness_N_per_m);
   drivers_.clear();
   targets_.clear();
   for (const LiverCoupling& c : liver.coupling) {
@@ -146,8 +147,9 @@ void BreathingPatient::KeepLiverUnderDiaphragm() {
     const auto ue = static_cast<std::size_t>(e);
     double cap = INFINITY;
     for (int q = liver.under_first[ue]; q < liver.under_first[ue + 1]; ++q)
-      cap = std::min(cap, u_diaphragm_[static_cast<std::size_t>(liver.under_diaphragm[static_cast<std::size_t>(q)])].z() +
-                              liver.under_allowance_m[static_cast<std::size_t>(q)]);
+      cap =
+          std::min(cap, u_diaphragm_[static_cast<std::size_t>(liver.under_diaphragm[static_cast<std::size_t>(q)])].z() +
+                            liver.under_allowance_m[static_cast<std::size_t>(q)]);
     if (u_liver_[ue].z() > cap) {
       capped.push_back(e);
       caps.emplace_back(u_liver_[ue].x(), u_liver_[ue].y(), cap);

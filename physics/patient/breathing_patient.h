@@ -22,16 +22,16 @@ namespace vesica::physics {
 
 struct PatientSnapshot {
   double time_s = 0.0;
-  double signal = 0.0;        ///< M(t) / A, in [-1, 1]
-  bool holding = false;       ///< breath hold requested (the signal fades to 0 then stays)
-  double tendon_displacement_m = 0.0;  ///< T(t) (eq. 12), caudal positive; the tendon moves by -T along z
-  bool tendon_limited = false;  ///< T was clamped so that the fixed crura stay fixed
-  std::vector<RibPose> ribs;  ///< one per model rib, same order
+  double signal = 0.0;                       ///< M(t) / A, in [-1, 1]
+  bool holding = false;                      ///< breath hold requested (the signal fades to 0 then stays)
+  double tendon_displacement_m = 0.0;        ///< T(t) (eq. 12), caudal positive; the tendon moves by -T along z
+  bool tendon_limited = false;               ///< T was clamped so that the fixed crura stay fixed
+  std::vector<RibPose> ribs;                 ///< one per model rib, same order
   std::vector<Eigen::Vector3d> diaphragm_m;  ///< diaphragm lattice elements, world
   std::vector<Eigen::Vector3d> liver_m;      ///< liver lattice elements, world
   Eigen::Vector3d tumour_centre_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d coupling_force_N = Eigen::Vector3d::Zero();  ///< sum of the diaphragm's pull on the liver
-  int capsule_pushed[3] = {-1, -1, -1};  ///< liver elements under the needle, -1 when none
+  int capsule_pushed[3] = {-1, -1, -1};                        ///< liver elements under the needle, -1 when none
   int blocked = 0;  ///< mail moves that would have moved a fixed element (0 unless the model is infeasible)
 };
 

@@ -65,8 +65,8 @@ DiaphragmModel BuildDiaphragm(const LabelVolume& v, const BreathingPatientParame
       d.tendon.push_back(e);
     }
   }
-  Require(!d.tendon.empty(), "the diaphragm has no central tendon (label " +
-                                 std::to_string(label::kDiaphragmTendon) + ")");
+  Require(!d.tendon.empty(),
+          "the diaphragm has no central tendon (label " + std::to_string(label::kDiaphragmTendon) + ")");
   Require(!d.spine_attachment.empty(), "the diaphragm does not touch the spine (its crura are fixed there)");
   d.rise_over_crura_m = d.mail->SlackFrom(d.spine_attachment, 2, false);
   d.rise_over_tendon_m = d.mail->SlackFrom(d.tendon, 2, false);
@@ -76,7 +76,8 @@ DiaphragmModel BuildDiaphragm(const LabelVolume& v, const BreathingPatientParame
   d.max_tendon_displacement_m = INFINITY;
   for (bool raise : {true, false}) {
     const std::vector<double> slack = d.mail->SlackFrom(d.tendon, 2, raise);
-    for (int f : d.spine_attachment) d.max_tendon_displacement_m = std::min(d.max_tendon_displacement_m, slack[static_cast<std::size_t>(f)]);
+    for (int f : d.spine_attachment)
+      d.max_tendon_displacement_m = std::min(d.max_tendon_displacement_m, slack[static_cast<std::size_t>(f)]);
   }
   return d;
 }
@@ -135,7 +136,8 @@ LiverModel BuildLiver(const LabelVolume& v, const DiaphragmModel& diaphragm, con
     const Eigen::Vector3d& l = liver.lattice.rest_m[static_cast<std::size_t>(e)];
     for (int d = 0; d < diaphragm.lattice.size(); ++d) {
       const Eigen::Vector3d gap = diaphragm.lattice.rest_m[static_cast<std::size_t>(d)] - l;
-      if (!diaphragm.pleural[static_cast<std::size_t>(d)] || gap.z() <= 0.0 || gap.head<2>().norm() >= p.under_radius_m) continue;
+      if (!diaphragm.pleural[static_cast<std::size_t>(d)] || gap.z() <= 0.0 || gap.head<2>().norm() >= p.under_radius_m)
+        continue;
       liver.under_diaphragm.push_back(d);
       liver.under_allowance_m.push_back(gap.z() - std::min(gap.z(), p.under_clearance_m));
     }

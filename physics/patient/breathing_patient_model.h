@@ -24,13 +24,13 @@ namespace vesica::physics {
 
 struct BreathingPatientParameters {
   RespirationSettings respiration;
-  double diaphragm_block_m = 0.006;  ///< diaphragm lattice spacing (rounded to whole voxels)
-  double liver_block_m = 0.008;      ///< liver lattice spacing
+  double diaphragm_block_m = 0.006;                   ///< diaphragm lattice spacing (rounded to whole voxels)
+  double liver_block_m = 0.008;                       ///< liver lattice spacing
   ChainMailParameters diaphragm_mail{0.5, 1.5, 0.5};  ///< a thin muscle sheet that contracts: loose
-  ChainMailParameters liver_mail{0.92, 1.08, 0.08};      ///< parenchyma: stiffer
-  double coupling_threshold_m = 0.005;         ///< seed 4.5: liver within 5 mm of the diaphragm is coupled
-  double coupling_stiffness_N_per_m = 200.0;   ///< per coupled lattice element, the ligaments' pull
-  double liver_support_stiffness_N_per_m = 10.0;  ///< per coupled element, what holds the liver below
+  ChainMailParameters liver_mail{0.92, 1.08, 0.08};   ///< parenchyma: stiffer
+  double coupling_threshold_m = 0.005;                ///< seed 4.5: liver within 5 mm of the diaphragm is coupled
+  double coupling_stiffness_N_per_m = 200.0;          ///< per coupled lattice element, the ligaments' pull
+  double liver_support_stiffness_N_per_m = 10.0;      ///< per coupled element, what holds the liver below
   double under_radius_m = 0.006;     ///< a diaphragm element this close sideways lies over a liver element
   double under_clearance_m = 0.003;  ///< the liver keeps this far below the diaphragm's mid-surface (or its rest gap)
 };
@@ -39,10 +39,10 @@ void ValidateBreathingPatientParameters(const BreathingPatientParameters& p);
 
 struct DiaphragmModel {
   BlockLattice lattice;
-  std::shared_ptr<ChainMail> mail;  ///< links and bounds; Move is const in effect (scratch only)
-  std::vector<int> tendon;          ///< elements of the central tendon: translate rigidly (eq. 12)
-  std::vector<int> spine_attachment;  ///< fixed elements (touching the spine: the crura)
-  std::vector<std::uint8_t> pleural;  ///< per element: lung or costophrenic recess touches it (from above)
+  std::shared_ptr<ChainMail> mail;         ///< links and bounds; Move is const in effect (scratch only)
+  std::vector<int> tendon;                 ///< elements of the central tendon: translate rigidly (eq. 12)
+  std::vector<int> spine_attachment;       ///< fixed elements (touching the spine: the crura)
+  std::vector<std::uint8_t> pleural;       ///< per element: lung or costophrenic recess touches it (from above)
   double max_tendon_displacement_m = 0.0;  ///< the farthest the tendon can go before the fixed crura would move
   /// How far each element can rise (z) above the crura / above the tendon before either must move.
   std::vector<double> rise_over_crura_m, rise_over_tendon_m;
@@ -66,7 +66,7 @@ struct LiverModel {
   std::vector<int> under_diaphragm;
   std::vector<double> under_allowance_m;  ///< how far the element may rise above the diaphragm's own rise
   Eigen::Vector3d tumour_centre_m = Eigen::Vector3d::Zero();
-  LatticeEmbedding tumour;   ///< the tumour's centre, carried with the lattice
+  LatticeEmbedding tumour;  ///< the tumour's centre, carried with the lattice
   bool has_tumour = false;
 };
 

@@ -1,7 +1,7 @@
 #include "physics/patient/chain_mail.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <queue>
 #include <stdexcept>
 #include <string>
@@ -9,9 +9,7 @@
 namespace vesica::physics {
 
 void ValidateChainMailParameters(const ChainMailParameters& p, const char* organ) {
-  const auto bad = [&](const char* what) {
-    throw std::invalid_argument(std::string(organ) + " ChainMail: " + what);
-  };
+  const auto bad = [&](const char* what) { throw std::invalid_argument(std::string(organ) + " ChainMail: " + what); };
   if (!(p.compression_gamma > 0.0 && p.compression_gamma <= 1.0)) bad("compression_gamma must be in (0, 1]");
   if (!(p.stretch_lambda >= 1.0 && std::isfinite(p.stretch_lambda))) bad("stretch_lambda must be >= 1");
   if (!(p.shear_mu >= 0.0 && std::isfinite(p.shear_mu))) bad("shear_mu must be >= 0");
@@ -137,7 +135,8 @@ ChainMail::MoveReport ChainMail::Move(std::span<const int> drivers, std::span<co
     report.moved += Pass(down, c, false, u, pinned, report.blocked);
   }
   if (report.refused()) {  // put everything back, latest first
-    for (auto it = undo_.rbegin(); it != undo_.rend(); ++it) u[static_cast<std::size_t>(it->element)](it->coordinate) = it->value;
+    for (auto it = undo_.rbegin(); it != undo_.rend(); ++it)
+      u[static_cast<std::size_t>(it->element)](it->coordinate) = it->value;
     report.moved = 0;
   }
   return report;

@@ -55,8 +55,8 @@ class ChainMail {
   /// Moves each drivers[i] to displacement targets[i] and lets the mail follow. u: the current
   /// displacement of every element (in/out), which must satisfy the bounds on entry.
   /// also_pinned: elements held for this move only, as if fixed.
-  MoveReport Move(std::span<const int> drivers, std::span<const Eigen::Vector3d> targets,
-                  std::span<Eigen::Vector3d> u, Drivers mode = Drivers::kPinned, std::span<const int> also_pinned = {});
+  MoveReport Move(std::span<const int> drivers, std::span<const Eigen::Vector3d> targets, std::span<Eigen::Vector3d> u,
+                  Drivers mode = Drivers::kPinned, std::span<const int> also_pinned = {});
 
   /// The largest violation of any link's bounds by displacements u (0 when all hold), in metres.
   [[nodiscard]] double WorstViolation_m(std::span<const Eigen::Vector3d> u) const;
@@ -70,7 +70,7 @@ class ChainMail {
   [[nodiscard]] std::size_t link_count() const { return links_.size(); }
 
  private:
-  struct Half {       // one direction of a link, stored with its element
+  struct Half {  // one direction of a link, stored with its element
     int other;
     float lo[3], hi[3];  // bounds on u_other - u_this
   };
@@ -89,7 +89,7 @@ class ChainMail {
   ChainMailParameters parameters_;
   std::vector<LinkRecord> links_;
   std::vector<std::uint8_t> fixed_;
-  mutable std::vector<int> first_;   // CSR offsets into halves_
+  mutable std::vector<int> first_;  // CSR offsets into halves_
   mutable std::vector<Half> halves_;
   mutable bool dirty_ = true;
   mutable std::vector<std::uint8_t> pinned_scratch_;

@@ -16,7 +16,7 @@ namespace vesica::physics {
 
 struct InertiaAxes {
   Eigen::Vector3d centroid_m = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d inertia_m5 = Eigen::Matrix3d::Zero();  ///< eq. 9 (tensor sign), about the centroid, m^3 * m^2
+  Eigen::Matrix3d inertia_m5 = Eigen::Matrix3d::Zero();          ///< eq. 9 (tensor sign), about the centroid, m^3 * m^2
   Eigen::Matrix3d principal_axes = Eigen::Matrix3d::Identity();  ///< columns, unit, largest spread first
   Eigen::Vector3d second_moments_m5 = Eigen::Vector3d::Zero();   ///< eigenvalues of S, descending
 };

@@ -11,11 +11,11 @@
 namespace vesica::physics {
 
 struct LabelVolume {
-  std::array<int, 3> dims{0, 0, 0};                       ///< voxels along i, j, k
-  Eigen::Vector3d spacing_m = Eigen::Vector3d::Ones();     ///< voxel size, > 0
-  Eigen::Vector3d origin_m = Eigen::Vector3d::Zero();      ///< centre of voxel (0, 0, 0)
+  std::array<int, 3> dims{0, 0, 0};                         ///< voxels along i, j, k
+  Eigen::Vector3d spacing_m = Eigen::Vector3d::Ones();      ///< voxel size, > 0
+  Eigen::Vector3d origin_m = Eigen::Vector3d::Zero();       ///< centre of voxel (0, 0, 0)
   Eigen::Matrix3d direction = Eigen::Matrix3d::Identity();  ///< columns: i, j, k axes in the world (orthonormal)
-  std::vector<std::uint8_t> labels;                       ///< dims[0] * dims[1] * dims[2], i fastest
+  std::vector<std::uint8_t> labels;                         ///< dims[0] * dims[1] * dims[2], i fastest
 
   [[nodiscard]] std::size_t Index(int i, int j, int k) const {
     return static_cast<std::size_t>(i) +

@@ -8,10 +8,10 @@
 namespace vesica::physics {
 
 struct RespirationSettings {
-  double frequency_Hz = 0.25;    ///< f, breaths per second; > 0 (quiet breathing 0.2-0.3, hyperventilation ~0.6)
+  double frequency_Hz = 0.25;        ///< f, breaths per second; > 0 (quiet breathing 0.2-0.3, hyperventilation ~0.6)
   double tendon_amplitude_m = 0.02;  ///< d_max of eq. 12 (seed: 2 cm); >= 0
-  double thoracic_scale = 1.0;   ///< scales alpha_max and beta_max (Table 1) for thoracic breathing; >= 0
-  double hold_fade_s = 1.0;      ///< breath-hold fade in and out; > 0
+  double thoracic_scale = 1.0;       ///< scales alpha_max and beta_max (Table 1) for thoracic breathing; >= 0
+  double hold_fade_s = 1.0;          ///< breath-hold fade in and out; > 0
 };
 
 /// Throws std::invalid_argument naming the field when a setting is out of range.

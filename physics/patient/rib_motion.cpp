@@ -20,7 +20,8 @@ RibAmplitudes Table1Amplitudes(int rib_number) {
 }
 
 SpineAxis SpineAxisFromVoxels(std::span<const Eigen::Vector3d> spine_voxels_m, double voxel_volume_m3) {
-  if (spine_voxels_m.empty()) throw std::invalid_argument("the label map has no spine voxels (needed for the rib centres)");
+  if (spine_voxels_m.empty())
+    throw std::invalid_argument("the label map has no spine voxels (needed for the rib centres)");
   const InertiaAxes axes = ComputeInertiaAxes(spine_voxels_m, voxel_volume_m3);
   SpineAxis spine{axes.centroid_m, axes.principal_axes.col(0)};
   if (spine.direction.z() < 0.0) spine.direction = -spine.direction;

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -35,8 +34,8 @@ TEST(BreathingPatientTest, ModelOfTheSyntheticPatient) {
   EXPECT_TRUE(m.liver.has_tumour);
 }
 
-constexpr double kF = 0.25;                 // the default breathing frequency
-constexpr double kPeakIn = 1.0 / (4 * kF);  // sin = 1
+constexpr double kF = 0.25;                  // the default breathing frequency
+constexpr double kPeakIn = 1.0 / (4 * kF);   // sin = 1
 constexpr double kPeakOut = 3.0 / (4 * kF);  // sin = -1
 constexpr double kDmax = 0.02;
 
@@ -55,7 +54,8 @@ TEST(BreathingPatientTest, TendonFollowsEquation12AndStopsInABreathHold) {
   patient.Update(kPeakIn);
   EXPECT_NEAR(patient.snapshot().tendon_displacement_m, kDmax, 1e-12);
   EXPECT_FALSE(patient.snapshot().tendon_limited);
-  for (int e : tendon) EXPECT_NEAR((patient.diaphragm_displacement()[e] - Eigen::Vector3d(0, 0, -kDmax)).norm(), 0.0, 1e-12);
+  for (int e : tendon)
+    EXPECT_NEAR((patient.diaphragm_displacement()[e] - Eigen::Vector3d(0, 0, -kDmax)).norm(), 0.0, 1e-12);
   patient.Update(kPeakOut);
   EXPECT_NEAR(patient.snapshot().tendon_displacement_m, -kDmax, 1e-12);
   patient.HoldBreath();
@@ -69,7 +69,8 @@ TEST(BreathingPatientTest, TendonFollowsEquation12AndStopsInABreathHold) {
   patient.ResumeBreathing();
   patient.Update(20.0);
   patient.Update(30.0);  // a peak of the phase clock, long after the fade
-  EXPECT_NEAR(std::abs(patient.snapshot().tendon_displacement_m), kDmax * std::abs(std::sin(2 * M_PI * kF * 30.0)), 1e-12);
+  EXPECT_NEAR(std::abs(patient.snapshot().tendon_displacement_m), kDmax * std::abs(std::sin(2 * M_PI * kF * 30.0)),
+              1e-12);
 }
 
 // Ten breaths sampled every 50 ms: every link of both mails within its bounds, the crura still,
@@ -93,7 +94,8 @@ TEST(BreathingPatientTest, TenBreathsKeepBoundsCruraAndLungs) {
     ASSERT_EQ(s.blocked, 0) << t;
     ASSERT_LE(m.diaphragm.mail->WorstViolation_m(patient.diaphragm_displacement()), 1e-9) << t;
     ASSERT_LE(m.liver.mail->WorstViolation_m(patient.liver_displacement()), 1e-9) << t;
-    for (int e : m.diaphragm.spine_attachment) ASSERT_EQ(patient.diaphragm_displacement()[e], Eigen::Vector3d::Zero()) << t;
+    for (int e : m.diaphragm.spine_attachment)
+      ASSERT_EQ(patient.diaphragm_displacement()[e], Eigen::Vector3d::Zero()) << t;
     for (const auto& [l, d] : under) closest_m = std::min(closest_m, s.diaphragm_m[d].z() - s.liver_m[l].z());
   }
   EXPECT_GT(closest_m, 0.0);
@@ -119,10 +121,11 @@ TEST(BreathingPatientTest, LiverDomeFollowsTheDiaphragmAndFallsOffBelow) {
       band_sum[band] += std::abs(patient.liver_displacement()[e].z());
       ++band_count[band];
     }
-    for (int b = 0; b + 1 < 4; ++b) EXPECT_GT(band_sum[b] / band_count[b], band_sum[b + 1] / band_count[b + 1]) << t << " band " << b;
+    for (int b = 0; b + 1 < 4; ++b)
+      EXPECT_GT(band_sum[b] / band_count[b], band_sum[b + 1] / band_count[b + 1]) << t << " band " << b;
     EXPECT_GT(band_sum[3] / band_count[3], 0.0);  // the inferior edge still moves
-    std::printf("t %.1f: tendon %.1f mm, dome %.1f mm, bands %.1f %.1f %.1f %.1f mm, tumour %.1f mm\n", t, 1e3 * tendon_z,
-                1e3 * dome_z, 1e3 * band_sum[0] / band_count[0], 1e3 * band_sum[1] / band_count[1],
+    std::printf("t %.1f: tendon %.1f mm, dome %.1f mm, bands %.1f %.1f %.1f %.1f mm, tumour %.1f mm\n", t,
+                1e3 * tendon_z, 1e3 * dome_z, 1e3 * band_sum[0] / band_count[0], 1e3 * band_sum[1] / band_count[1],
                 1e3 * band_sum[2] / band_count[2], 1e3 * band_sum[3] / band_count[3],
                 1e3 * (patient.snapshot().tumour_centre_m - m.liver.tumour_centre_m).z());
   }
@@ -201,7 +204,8 @@ TEST(BreathingPatientTest, LabelMapsWithoutAnOrganAreRefused) {
     return std::string("no error");
   };
   LabelVolume no_liver = without(patient_label::kLiver, patient_label::kSoftTissue);
-  std::replace(no_liver.labels.begin(), no_liver.labels.end(), patient_label::kLiverCapsule, patient_label::kSoftTissue);
+  std::replace(no_liver.labels.begin(), no_liver.labels.end(), patient_label::kLiverCapsule,
+               patient_label::kSoftTissue);
   std::replace(no_liver.labels.begin(), no_liver.labels.end(), patient_label::kTumour, patient_label::kSoftTissue);
   EXPECT_NE(message(no_liver).find("no liver"), std::string::npos) << message(no_liver);
   const LabelVolume no_spine = without(patient_label::kSpine, patient_label::kSoftTissue);

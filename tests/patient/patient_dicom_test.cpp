@@ -57,7 +57,8 @@ TEST(PatientDicomTest, BadSeriesAreNamed) {
   WriteDicomSeries(Small(), dir);
   fs::remove(dir / "slice_0040.dcm");
   const std::string missing = ErrorOf([&] { (void)ReadDicomSeries(dir); });
-  EXPECT_NE(missing.find("missing or uneven slices between slice_0039.dcm and slice_0041.dcm"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("missing or uneven slices between slice_0039.dcm and slice_0041.dcm"), std::string::npos)
+      << missing;
 
   const fs::path other = Scratch("other");
   WriteDicomSeries(Small(), other);

@@ -47,14 +47,16 @@ void ExpectSameGrid(const physics::LabelVolume& a, const physics::LabelVolume& b
 }
 
 TEST(PatientFilesTest, CommittedPatientIsWhatTheGeneratorMakes) {
-  const PatientVolume loaded = LoadNiftiPatient(kData / "synthetic-biopsy_ct.nii.gz", kData / "synthetic-biopsy_labels.nii.gz",
-                                                kData / "synthetic-biopsy_labels.toml");
+  const PatientVolume loaded =
+      LoadNiftiPatient(kData / "synthetic-biopsy_ct.nii.gz", kData / "synthetic-biopsy_labels.nii.gz",
+                       kData / "synthetic-biopsy_labels.toml");
   ExpectSameGrid(loaded.labels, Synthetic().labels);
   EXPECT_TRUE(loaded.labels.labels == Synthetic().labels.labels);
   EXPECT_TRUE(loaded.hu == Synthetic().hu);
   // Small enough for the repository.
-  EXPECT_LT(fs::file_size(kData / "synthetic-biopsy_ct.nii.gz") + fs::file_size(kData / "synthetic-biopsy_labels.nii.gz"),
-            2'000'000u);
+  EXPECT_LT(
+      fs::file_size(kData / "synthetic-biopsy_ct.nii.gz") + fs::file_size(kData / "synthetic-biopsy_labels.nii.gz"),
+      2'000'000u);
 }
 
 TEST(PatientFilesTest, SyntheticPatientIsAnAdultsAnatomy) {
@@ -73,8 +75,8 @@ TEST(PatientFilesTest, SyntheticPatientIsAnAdultsAnatomy) {
       EXPECT_GT(count[label::Bundle(left, n)], 0) << n;
     }
   for (std::uint8_t l : {label::kSkin, label::kFat, label::kMuscle, label::kSpine, label::kSternum, label::kLung,
-                         label::kCostophrenicRecess, label::kDiaphragmMuscle, label::kDiaphragmTendon, label::kGallbladder,
-                         label::kColon})
+                         label::kCostophrenicRecess, label::kDiaphragmMuscle, label::kDiaphragmTendon,
+                         label::kGallbladder, label::kColon})
     EXPECT_GT(count[l], 0) << int(l);
   // Hounsfield units: air outside, lung, fat, liver, bone.
   const auto hu_of = [&](std::uint8_t l) {
@@ -92,7 +94,8 @@ TEST(PatientFilesTest, SyntheticPatientIsAnAdultsAnatomy) {
 TEST(PatientFilesTest, NiftiRoundTripKeepsVoxelsAndOrientation) {
   // An oblique grid: turned 30 degrees about the body axis and moved.
   PatientVolume turned = GenerateSyntheticPatient({.spacing_m = 0.004});
-  turned.labels.direction = Eigen::AngleAxisd(M_PI / 6, Eigen::Vector3d::UnitZ()).toRotationMatrix() * turned.labels.direction;
+  turned.labels.direction =
+      Eigen::AngleAxisd(M_PI / 6, Eigen::Vector3d::UnitZ()).toRotationMatrix() * turned.labels.direction;
   turned.labels.origin_m += Eigen::Vector3d(0.01, -0.02, 0.3);
   const fs::path ct = Scratch("turned_ct.nii.gz"), labels = Scratch("turned_labels.nii");
   WriteNiftiPatient(turned, ct, labels);
@@ -121,7 +124,8 @@ TEST(PatientFilesTest, BadFilesAreNamed) {
   const std::string not_nifti = ErrorOf([&] { (void)LoadNiftiPatient(text, labels, table); });
   EXPECT_NE(not_nifti.find("text.nii"), std::string::npos) << not_nifti;
 
-  const std::string sizes = ErrorOf([&] { (void)LoadNiftiPatient(kData / "synthetic-biopsy_ct.nii.gz", labels, table); });
+  const std::string sizes =
+      ErrorOf([&] { (void)LoadNiftiPatient(kData / "synthetic-biopsy_ct.nii.gz", labels, table); });
   EXPECT_NE(sizes.find("sizes differ"), std::string::npos) << sizes;
   EXPECT_NE(sizes.find("small_labels.nii.gz"), std::string::npos) << sizes;
 
@@ -137,7 +141,8 @@ TEST(PatientFilesTest, BadFilesAreNamed) {
   const fs::path ct3 = Scratch("unknown_ct.nii.gz"), labels3 = Scratch("unknown_labels.nii.gz");
   WriteNiftiPatient(unknown, ct3, labels3);
   const std::string unknown_label = ErrorOf([&] { (void)LoadNiftiPatient(ct3, labels3, table); });
-  EXPECT_NE(unknown_label.find("unknown_labels.nii.gz: labels not in the label table: 200 (1 voxels)"), std::string::npos)
+  EXPECT_NE(unknown_label.find("unknown_labels.nii.gz: labels not in the label table: 200 (1 voxels)"),
+            std::string::npos)
       << unknown_label;
 
   PatientVolume no_liver = small;
@@ -152,7 +157,9 @@ TEST(PatientFilesTest, BadFilesAreNamed) {
 TEST(PatientFilesTest, LabelTablesAreCheckedAndRemapped) {
   const fs::path bad_name = Scratch("bad_name.toml");
   std::ofstream(bad_name) << "[[label]]\nvalue = 1\nname = \"livr\"\n";
-  const std::string name = ErrorOf([&] { (void)LoadNiftiPatient(kData / "synthetic-biopsy_ct.nii.gz", kData / "synthetic-biopsy_labels.nii.gz", bad_name); });
+  const std::string name = ErrorOf([&] {
+    (void)LoadNiftiPatient(kData / "synthetic-biopsy_ct.nii.gz", kData / "synthetic-biopsy_labels.nii.gz", bad_name);
+  });
   EXPECT_NE(name.find("bad_name.toml, label entry 1: unknown structure name 'livr'"), std::string::npos) << name;
   const fs::path twice = Scratch("twice.toml");
   std::ofstream(twice) << "[[label]]\nvalue = 1\nname = \"liver\"\n[[label]]\nvalue = 1\nname = \"lung\"\n";
@@ -165,7 +172,8 @@ TEST(PatientFilesTest, LabelTablesAreCheckedAndRemapped) {
   map.dims = {2, 2, 1};
   map.labels = {0, 1, 2, 1};
   RemapLabels(map, ReadLabelTable(itk), "itk_labels.nii.gz");
-  EXPECT_EQ(map.labels, (std::vector<std::uint8_t>{label::kAir, label::kLiver, label::kDiaphragmTendon, label::kLiver}));
+  EXPECT_EQ(map.labels,
+            (std::vector<std::uint8_t>{label::kAir, label::kLiver, label::kDiaphragmTendon, label::kLiver}));
 }
 
 }  // namespace

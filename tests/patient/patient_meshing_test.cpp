@@ -44,9 +44,10 @@ double WorstDistanceToBoundary(const physics::LabelVolume& v, const std::vector<
           const int step[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
           for (const auto& s : step)
             if (!inside(i + s[0], j + s[1], k + s[2])) {
-              const Eigen::Vector3d face = v.origin_m + v.direction * Eigen::Vector3d((i + 0.5 * s[0]) * v.spacing_m.x(),
-                                                                                      (j + 0.5 * s[1]) * v.spacing_m.y(),
-                                                                                      (k + 0.5 * s[2]) * v.spacing_m.z());
+              const Eigen::Vector3d face =
+                  v.origin_m + v.direction * Eigen::Vector3d((i + 0.5 * s[0]) * v.spacing_m.x(),
+                                                             (j + 0.5 * s[1]) * v.spacing_m.y(),
+                                                             (k + 0.5 * s[2]) * v.spacing_m.z());
               best = std::min(best, (face - x).norm());
             }
         }
@@ -79,7 +80,8 @@ TEST(PatientMeshingTest, SurfacesAreClosedAndOutward) {
   for (std::uint8_t l : v.labels) voxels += label::IsLiver(l);
   EXPECT_NEAR(physics::EnclosedVolume(liver), voxels * v.VoxelVolume_m3(), 0.05 * voxels * v.VoxelVolume_m3());
   const physics::TriangleMesh tumour = MeshLabels(v, {label::kTumour}, "tumour");
-  EXPECT_NEAR(physics::EnclosedVolume(tumour), 4.0 / 3.0 * M_PI * std::pow(0.0075, 3), 0.25 * 4.0 / 3.0 * M_PI * std::pow(0.0075, 3));
+  EXPECT_NEAR(physics::EnclosedVolume(tumour), 4.0 / 3.0 * M_PI * std::pow(0.0075, 3),
+              0.25 * 4.0 / 3.0 * M_PI * std::pow(0.0075, 3));
 }
 
 TEST(PatientMeshingTest, NiftiRoundTripGivesTheSameMeshes) {

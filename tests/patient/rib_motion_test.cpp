@@ -30,10 +30,10 @@ std::vector<Eigen::Vector3d> Plate(const Eigen::Matrix3d& rotation, const Eigen:
 }
 
 TEST(InertiaMatrixTest, RecoversTheAxesOfASyntheticRib) {
-  const Eigen::Matrix3d rotation =
-      (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.7, Eigen::Vector3d(1, 1, 0).normalized()) *
-       Eigen::AngleAxisd(0.25, Eigen::Vector3d::UnitX()))
-          .toRotationMatrix();
+  const Eigen::Matrix3d rotation = (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) *
+                                    Eigen::AngleAxisd(-0.7, Eigen::Vector3d(1, 1, 0).normalized()) *
+                                    Eigen::AngleAxisd(0.25, Eigen::Vector3d::UnitX()))
+                                       .toRotationMatrix();
   const Eigen::Vector3d centre(0.05, -0.02, 0.1);
   const auto points = Plate(rotation, centre);
   const InertiaAxes axes = ComputeInertiaAxes(points, 8e-9);
