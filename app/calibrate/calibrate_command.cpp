@@ -1,5 +1,6 @@
 // calibrate and verify: the arm moves. One prompt before the session opens (the node's watchdog
 // would end a session left waiting for a person), then the steps with progress, then the checks.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
@@ -11,6 +12,7 @@
 #include "app/calibrate/open_arm.h"
 #include "app/calibrate/stored_calibration.h"
 #include "device/calibration/calibration_abort.h"
+#include "firmware_protocol/emulator/reference_load.h"
 
 namespace vesica::app::calibrate {
 
@@ -78,20 +80,51 @@ CommandOutcome Measure(ToolSession& s, int arm, const CalibrateRequest& request,
                                     InfoOf(request.steps.front()).name +
                                     " to start from; run a whole calibration first (nothing moved)",
                                 {{"arm", arm}});
-  if (!s.ui().ConfirmMotion(NoticeFor(a, request)))
+  const MotionNotice notice = NoticeFor(a, request);
+  if (!notice.motions.empty() && !s.ui().ConfirmMotion(notice))  // the hand steps move no motor
     return ToolSession::Failure(kExitAborted,
                                 "arm " + std::to_string(arm) +
                                     ": not confirmed; nothing moved, nothing "
                                     "was written",
                                 {{"arm", arm}});
+  // The torque-constant check and the guided hand steps store nothing (yet): nothing to save.
+  const bool check_only =
+      std::none_of(request.steps.begin(), request.steps.end(), [](Step x) { return InfoOf(x).in_whole; });
+  // The emulated arms have the reference load fixture in their emulator: it is clamped on here.
+  const bool torque_check =
+      std::find(request.steps.begin(), request.steps.end(), Step::kTorqueConstant) != request.steps.end();
+  if (torque_check && s.bus().emulated_arm(arm))
+    s.bus().emulated_arm(arm)->plant().SetReferenceLoad(fp::emulator::StandardReferenceLoad());
   RunRequest run;
   run.plan.joints = static_cast<std::uint8_t>(request.joints);
   run.plan.session_max_current_A = request.max_current_A;
   run.plan.date_s = s.date_s();
   run.plan.tool_version = kToolVersion;
   run.plan.progress = [&s, arm](const std::string& step, double f) { s.Progress(arm, step, f); };
+  // The guided hand steps ask the person through the UI, at most every 20 ms of bus time (the
+  // servo period goes on between: the node's watchdog is fed).
+  run.plan.hand_guide = [&s, arm, text = a.text, link = a.link, last = -1.0, shown = std::string()](
+                            const cal::HandPromptSpec& p, double live) mutable {
+    const std::string key = p.step + "/" + std::to_string(p.prompt_index) + "/" + std::to_string(p.attempt);
+    if (key == shown && link->now_s() - last < 0.02) return cal::HandReply::kWait;
+    shown = key;
+    last = link->now_s();
+    HandPrompt prompt{arm,       text,          p.step, p.instruction, "counts", p.prompt_index, p.prompt_count,
+                      p.attempt, p.retry_reason};
+    switch (s.ui().GuideHand(prompt, live)) {
+      case HandAnswer::kAccept:
+        return cal::HandReply::kAccept;
+      case HandAnswer::kRetry:
+        return cal::HandReply::kRetry;
+      case HandAnswer::kAbort:
+        return cal::HandReply::kAbort;
+      case HandAnswer::kWait:
+        break;
+    }
+    return cal::HandReply::kWait;
+  };
   run.steps = request.steps;
-  run.save = save;
+  run.save = save && !check_only;
   const unsigned joints = request.joints;
   if (save)
     run.judge = [joints](const cal::CalibrationResult& r, const std::vector<Step>& steps) {
@@ -164,14 +197,15 @@ CommandOutcome Measure(ToolSession& s, int arm, const CalibrateRequest& request,
     result_line = "FAIL: " + o.json["error"]["message"].get<std::string>();
   } else {
     result_line =
-        save ? "PASS: calibration saved in slot " + SlotName(in.info_after ? in.info_after->active_slot : -1) +
-                   " (generation " +
-                   std::to_string(
-                       in.info_after && in.info_after->active_slot >= 0
-                           ? in.info_after->slot_generation[static_cast<std::size_t>(in.info_after->active_slot)]
-                           : 0) +
-                   ")"
-             : "PASS: the arm matches its stored calibration (nothing was written)";
+        check_only ? "PASS: every value is within its tolerance (nothing was written)"
+        : save     ? "PASS: calibration saved in slot " + SlotName(in.info_after ? in.info_after->active_slot : -1) +
+                     " (generation " +
+                     std::to_string(
+                         in.info_after && in.info_after->active_slot >= 0
+                             ? in.info_after->slot_generation[static_cast<std::size_t>(in.info_after->active_slot)]
+                             : 0) +
+                     ")"
+               : "PASS: the arm matches its stored calibration (nothing was written)";
   }
   char t[64];
   std::snprintf(t, sizeof t, "%.1f s of bus time", out.bus_time_s);

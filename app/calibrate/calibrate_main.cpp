@@ -1,9 +1,13 @@
 // vesica-calibrate: the technician's tool for the arms' motor calibration (issue 32), in the
 // manner of moteus_tool and odrivetool. docs/calibration.md is its guide.
+#include <sched.h>
+
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 
 #include "app/calibrate/commands.h"
@@ -31,6 +35,7 @@ int Run(int argc, char** argv) {
   bool udp = false;
   std::uint64_t emulated_seed = 0;
   bool json = false, yes = false, quiet = false;
+  int realtime_priority = 0;
   app.add_option("--can", can_interface, "SocketCAN interface the arms are on (e.g. can0)");
   app.add_flag("--udp", udp, "CAN over UDP to vesica-armsim (the default)");
   app.add_option("--udp-host", options.bus.udp_host, "vesica-armsim's address (IPv4)");
@@ -49,6 +54,10 @@ int Run(int argc, char** argv) {
   app.add_option("--dir", options.data_dir,
                  "folder of sessions and stored images (default $VESICA_CALIBRATION_DIR or "
                  "~/.local/share/vesica/calibration)");
+  app.add_option("--realtime-priority", realtime_priority,
+                 "run the servo at SCHED_FIFO priority N (a host-driven calibration over UDP or CAN on a busy "
+                 "host stays accurate; needs CAP_SYS_NICE), 0: normal scheduling")
+      ->check(CLI::Range(0, 99));
   app.add_option("--date", options.date_s, "calibration date recorded in the slot, Unix time (default now)");
 
   std::string arm_name;
@@ -130,6 +139,13 @@ int Run(int argc, char** argv) {
     request.steps = {*s};
   }
 
+  if (realtime_priority > 0) {
+    sched_param param{};
+    param.sched_priority = realtime_priority;
+    if (sched_setscheduler(0, SCHED_FIFO, &param) != 0)
+      std::fprintf(stderr, "vesica-calibrate: SCHED_FIFO priority %d refused (%s); running with normal scheduling\n",
+                   realtime_priority, std::strerror(errno));
+  }
   c::TerminalUi ui(yes, quiet);
   std::signal(SIGINT, OnSigint);
   c::ToolSession session(options, ui, &g_interrupted);

@@ -32,6 +32,18 @@ void RunStep(Step s, cal::StepContext& ctx) {
     case Step::kGravity:
       cal::IdentifyGravity(ctx);
       break;
+    case Step::kTorqueConstant:
+      cal::CheckTorqueConstants(ctx);
+      break;
+    case Step::kRollOffset:
+      cal::CalibrateRollOffset(ctx);
+      break;
+    case Step::kJawSpan:
+      cal::CalibrateJawSpan(ctx);
+      break;
+    case Step::kPedalTravel:
+      cal::CalibratePedalTravel(ctx);
+      break;
   }
 }
 

@@ -106,12 +106,26 @@ json ToJson(const cal::CalibrationResult& r) {
                                  {"friction_offset", c.friction_offset},
                                  {"friction_rms", c.friction_rms},
                                  {"friction_segments", segments}};
+    if (c.torque_constant_ratio > 0.0) {  // the check ran
+      json holds = json::array();
+      for (const auto& h : c.load_holds) holds.push_back({{"position", h.position}, {"torque", h.torque}});
+      j["joints"][JointName(k)]["torque_constant_ratio"] = c.torque_constant_ratio;
+      j["joints"][JointName(k)]["load_holds"] = holds;
+    }
   }
   json holds = json::array();
   for (const auto& h : r.gravity_holds)
     holds.push_back(
         {{"angle_rad", h.angle_rad}, {"breakaway_up", h.breakaway_up}, {"breakaway_down", h.breakaway_down}});
   j["gravity"] = {{"sin", r.gravity_sin}, {"cos", r.gravity_cos}, {"holds", holds}};
+  const auto& h = r.hand;  // the guided hand steps, where they ran
+  if (h.roll_measured)
+    j["hand"]["roll"] = {{"raw", h.roll_raw}, {"offset_rad", h.roll_offset_rad}, {"attempts", h.roll_attempts}};
+  if (h.jaw_measured)
+    j["hand"]["jaw"] = {{"closed_raw", h.jaw_closed_raw}, {"open_raw", h.jaw_open_raw}, {"attempts", h.jaw_attempts}};
+  if (h.pedal_measured)
+    j["hand"]["pedal"] = {
+        {"released_raw", h.pedal_up_raw}, {"pressed_raw", h.pedal_down_raw}, {"attempts", h.pedal_attempts}};
   j["saved"] = r.saved;
   j["abort"] = cal::ToString(r.abort);
   j["message"] = r.message;

@@ -1,5 +1,6 @@
 #include "app/calibrate/terminal_ui.h"
 
+#include <poll.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -75,6 +76,65 @@ bool TerminalUi::ConfirmMotion(const MotionNotice& notice) {
     return false;  // no one to answer (stdin closed): nothing moves
   }
   return answer == "y" || answer == "Y" || answer == "yes";
+}
+
+bool TerminalUi::PollLine(std::string* line, bool* closed) {
+  *closed = false;
+  pollfd p{STDIN_FILENO, POLLIN, 0};
+  while (poll(&p, 1, 0) == 1 && (p.revents & (POLLIN | POLLHUP))) {
+    char c = 0;
+    if (read(STDIN_FILENO, &c, 1) != 1) {
+      *closed = true;
+      return false;
+    }
+    if (c == '\n') {
+      *line = typed_;
+      typed_.clear();
+      return true;
+    }
+    typed_ += c;
+  }
+  return false;
+}
+
+HandAnswer TerminalUi::GuideHand(const HandPrompt& prompt, double live_value) {
+  if (assume_yes_) {
+    EndBar();
+    std::fprintf(stderr, "%s: %s needs a person at the arm to move it; --yes cannot: stopped\n",
+                 prompt.arm_text.c_str(), prompt.step.c_str());
+    return HandAnswer::kAbort;
+  }
+  const std::string key =
+      prompt.step + "/" + std::to_string(prompt.prompt_index) + "/" + std::to_string(prompt.attempt);
+  const auto now = std::chrono::steady_clock::now();
+  if (key != hand_key_) {
+    EndBar();
+    hand_key_ = key;
+    if (!prompt.retry_reason.empty()) std::fprintf(stderr, "  again (%s)\n", prompt.retry_reason.c_str());
+    std::fprintf(stderr,
+                 "arm %d %s (%d of %d%s): %s\n  Enter: take the value shown; r Enter: start this step again; q "
+                 "Enter: stop\n",
+                 prompt.arm, prompt.step.c_str(), prompt.prompt_index + 1, prompt.prompt_count,
+                 prompt.attempt > 1 ? (", try " + std::to_string(prompt.attempt)).c_str() : "",
+                 prompt.instruction.c_str());
+    hand_shown_ = {};
+  }
+  // The live value: redrawn in place on a terminal, a line a second otherwise.
+  if (now - hand_shown_ >= (tty_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(1000))) {
+    hand_shown_ = now;
+    std::fprintf(stderr, tty_ ? "\r  live: %6.0f %s   " : "  live: %.0f %s\n", live_value, prompt.unit.c_str());
+    std::fflush(stderr);
+    bar_open_ = tty_;
+  }
+  std::string line;
+  bool closed = false;
+  if (!PollLine(&line, &closed)) return closed ? HandAnswer::kAbort : HandAnswer::kWait;
+  EndBar();
+  if (line.empty()) return HandAnswer::kAccept;
+  if (line == "r" || line == "R") return HandAnswer::kRetry;
+  if (line == "q" || line == "Q") return HandAnswer::kAbort;
+  std::fprintf(stderr, "  Enter, r or q\n");
+  return HandAnswer::kWait;
 }
 
 void TerminalUi::Note(const std::string& line) {

@@ -19,9 +19,14 @@ class TerminalUi final : public ToolUi {
   void Progress(int arm, const std::string& step, double fraction, double eta_s) override;
   bool ConfirmMotion(const MotionNotice& notice) override;
   void Note(const std::string& line) override;
+  /// The prompt and the live value on one line, redrawn (a terminal) or a line a second (not one);
+  /// Enter accepts, "r" Enter retries, "q" Enter stops. With --yes nobody is there: it declines.
+  HandAnswer GuideHand(const HandPrompt& prompt, double live_value) override;
 
  private:
   void EndBar();
+  /// A line typed on stdin so far, without blocking; true when one ended (Enter), false at no input.
+  bool PollLine(std::string* line, bool* closed);
 
   bool assume_yes_;
   bool quiet_;
@@ -29,6 +34,9 @@ class TerminalUi final : public ToolUi {
   bool bar_open_ = false;
   std::string step_;
   int last_quarter_ = -1;
+  std::string hand_key_;  ///< the prompt on screen
+  std::string typed_;     ///< stdin since the last Enter
+  std::chrono::steady_clock::time_point hand_shown_{};
 };
 
 /// "1:05", "0:07", "--:--" for unknown.

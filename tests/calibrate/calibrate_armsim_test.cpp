@@ -3,7 +3,6 @@
 // one; the bus log of the session reads back frame for frame. A whole calibration in real time
 // over UDP finds the random arm's ground truth, the session's watchdog holding on a busy host.
 #include <gtest/gtest.h>
-
 #include <sched.h>
 
 #include <fstream>
@@ -114,15 +113,23 @@ TEST(CalibrateArmsim, AWholeCalibrationOverUdpFindsTheGroundTruth) {
   const int base = device::testing::FreeArmBasePort();
   ASSERT_NE(base, 0);
   device::testing::ArmsimProcess arm;
-  ASSERT_TRUE(arm.Start(VESICA_ARMSIM_PATH, {"--node-id", "1", "--local-port", std::to_string(base), "--random-arm",
-                                             std::to_string(kSeed), "--realtime-priority", "20", "--log-level",
-                                             "error", "--report"}));
+  ASSERT_TRUE(arm.Start(VESICA_ARMSIM_PATH,
+                        {"--node-id", "1", "--local-port", std::to_string(base), "--random-arm", std::to_string(kSeed),
+                         "--realtime-priority", "20", "--log-level", "error", "--report"}));
   const std::string dir = testing::FreshDir("armsim-calibrate");
   testing::ToolRun run;
-  // The arm boots within a moment: a calibration that found no node yet is tried again.
-  for (int attempt = 0; attempt < 10; ++attempt) {
+  // The arm boots within a moment: a calibration that found no node yet is tried again. On a
+  // heavily loaded host even real-time priority may leave a sweep uneven; the tool then refuses
+  // the values (exit 5, nothing saved), as a technician would see, and is run again, at most twice.
+  int refused = 0;
+  for (int attempt = 0; attempt < 12; ++attempt) {
     run = RunTool({"--udp-base-port", std::to_string(base), "--dir", dir, "--json", "--yes", "--quiet",
                    "--realtime-priority", "20", "--date", "1790000000", "calibrate", "1"});
+    if (run.exit_code == kExitFailed && refused < 2) {
+      ++refused;
+      EXPECT_FALSE(run.json()["saved"].get<bool>());
+      continue;
+    }
     if (run.exit_code != kExitNoArm) break;
   }
   ASSERT_EQ(run.exit_code, kExitOk) << run.err << run.out;

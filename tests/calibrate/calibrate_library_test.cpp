@@ -9,6 +9,7 @@
 #include "app/calibrate/commands.h"
 #include "app/calibrate/exit_codes.h"
 #include "device/calibration/calibration_abort.h"
+#include "firmware_protocol/emulator/arm_ground_truth.h"
 #include "firmware_protocol/node/parameter_table.h"
 #include "tool_process.h"
 
@@ -91,6 +92,89 @@ TEST(CalibrateLibrary, ThePanelSeesEveryStepAndItsAbortLeavesTheStoredCalibratio
   EXPECT_EQ(arm->node().active_slot(), 0);
   EXPECT_EQ(arm->node().parameters().f32(fp::param::kCoulombFriction + 1), coulomb);
   EXPECT_EQ(arm->board().flash().bytes(), flash) << "something was written";
+}
+
+// A panel with a person at the arm: for each hand prompt it moves the emulated arm's jaw handle
+// or pedal as asked, shows the live value for a while, then accepts; the first jaw attempt it
+// retries. A panel that does not implement GuideHand (ToolUi's default) declines.
+class HandPanelUi final : public ToolUi {
+ public:
+  explicit HandPanelUi(ToolSession** session) : session_(session) {}
+  void Progress(int, const std::string&, double, double) override {}
+  bool ConfirmMotion(const MotionNotice&) override { return true; }
+  void Note(const std::string&) override {}
+  HandAnswer GuideHand(const HandPrompt& p, double live) override {
+    EXPECT_EQ(p.arm, 1);
+    EXPECT_EQ(p.unit, "counts");
+    const std::string key = p.step + std::to_string(p.prompt_index) + "/" + std::to_string(p.attempt);
+    fp::emulator::ArmPlant& plant = (*session_)->bus().emulated_arm(1)->plant();
+    if (key != key_) {
+      key_ = key;
+      calls_ = 0;
+      prompts.push_back(p.step + " " + std::to_string(p.prompt_index + 1) + "/" + std::to_string(p.prompt_count) +
+                        " try " + std::to_string(p.attempt));
+      fp::emulator::HandTarget t;
+      t.holding = false;
+      t.jaw_rad = p.step == "jaw span" && p.prompt_index == 1 ? 0.7 : 0.0;
+      t.pedal_travel = p.step == "pedal travel" && p.prompt_index == 1 ? 1.0 : 0.0;
+      plant.SetHandScript(fp::emulator::HandScript(t));
+    }
+    last_live = live;
+    if (++calls_ < 10) return HandAnswer::kWait;  // 10 calls, 20 ms of bus time apart
+    if (p.step == "jaw span" && p.attempt == 1 && p.prompt_index == 1) return HandAnswer::kRetry;
+    return HandAnswer::kAccept;
+  }
+  std::vector<std::string> prompts;
+  double last_live = -1.0;
+
+ private:
+  ToolSession** session_;
+  std::string key_;
+  int calls_ = 0;
+};
+
+class NoHandUi final : public ToolUi {
+ public:
+  void Progress(int, const std::string&, double, double) override {}
+  bool ConfirmMotion(const MotionNotice&) override { return true; }
+  void Note(const std::string&) override {}
+};
+
+TEST(CalibrateLibrary, TheGuidedHandStepsPromptWithALiveValueAndRetry) {
+  const std::string dir = testing::FreshDir("library-hand");
+  {
+    NoHandUi ui;
+    ToolSession session(EmulatedOptions(dir), ui, nullptr);
+    ASSERT_EQ(Calibrate(session, 1, CalibrateRequest{}).exit_code, kExitOk);  // a calibrated arm to start from
+  }
+  ToolSession* current = nullptr;
+  HandPanelUi ui(&current);
+  ToolSession session(EmulatedOptions(dir), ui, nullptr);
+  current = &session;
+  CalibrateRequest request;
+  request.steps = {Step::kJawSpan, Step::kPedalTravel};
+  const CommandOutcome o = Calibrate(session, 1, request);
+  ASSERT_EQ(o.exit_code, kExitOk) << o.text;
+  EXPECT_EQ(ui.prompts,
+            (std::vector<std::string>{"jaw span 1/2 try 1", "jaw span 2/2 try 1", "jaw span 1/2 try 2",
+                                      "jaw span 2/2 try 2", "pedal travel 1/2 try 1", "pedal travel 2/2 try 1"}));
+  const fp::emulator::ArmGroundTruth t = fp::emulator::RandomArm(33);
+  const nlohmann::json& hand = o.json["measured"]["hand"];
+  EXPECT_EQ(hand["jaw"]["closed_raw"], t.jaw_closed_raw());
+  EXPECT_EQ(hand["jaw"]["open_raw"], t.jaw_open_raw());
+  EXPECT_EQ(hand["jaw"]["attempts"], 2);
+  EXPECT_EQ(hand["pedal"]["released_raw"], t.pedal_up_raw());
+  EXPECT_EQ(hand["pedal"]["pressed_raw"], t.pedal_down_raw());
+  EXPECT_EQ(ui.last_live, t.pedal_down_raw());  // the live value was the sensor's
+  EXPECT_FALSE(o.json["saved"].get<bool>());    // reported, not stored
+
+  // A panel without GuideHand declines: the step stops, saying why.
+  NoHandUi plain;
+  ToolSession again(EmulatedOptions(dir), plain, nullptr);
+  request.steps = {Step::kRollOffset};
+  const CommandOutcome declined = Calibrate(again, 1, request);
+  EXPECT_EQ(declined.exit_code, kExitAborted) << declined.text;
+  EXPECT_NE(declined.text.find("roll offset: stopped at the prompt"), std::string::npos) << declined.text;
 }
 
 }  // namespace
