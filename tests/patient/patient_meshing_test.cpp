@@ -10,6 +10,7 @@
 
 #include "app/patient/patient_files.h"
 #include "app/patient/synthetic_patient.h"
+#include "physics/patient/breathing_patient.h"
 #include "physics/patient/patient_labels.h"
 
 namespace vesica::app::patient {
@@ -103,6 +104,33 @@ TEST(PatientMeshingTest, WholePatientHasEveryOrgan) {
   EXPECT_EQ(organs.size(), 9u + 24u);
   for (const OrganSurface& o : organs) EXPECT_GT(o.mesh.num_triangles(), 20) << o.organ;
   EXPECT_THROW((void)MeshLabels(Synthetic().labels, {250}, "nothing"), std::invalid_argument);
+}
+
+// The liver's rendered surface moves with its ChainMail lattice: still at end tidal, its top follows
+// the tendon at peak inspiration and its lowest point moves less.
+TEST(PatientMeshingTest, LiverSurfaceMovesWithItsLattice) {
+  const physics::LabelVolume& v = Synthetic().labels;
+  const physics::TriangleMesh liver = MeshLabels(v, {label::kLiver, label::kLiverCapsule, label::kTumour}, "liver");
+  const auto model = physics::BuildBreathingPatientModel(v);
+  std::vector<Eigen::Vector3d> vertices;
+  for (int p = 0; p < liver.num_vertices(); ++p) vertices.push_back(liver.vertices.row(p).transpose());
+  const physics::LatticeEmbedding embedding = physics::EmbedPoints(model->liver.lattice, v, vertices);
+  for (std::size_t p = 0; p < vertices.size(); ++p) ASSERT_GT(embedding.first[p + 1], embedding.first[p]) << p;
+  physics::BreathingPatient patient(model);
+  patient.Update(0.0);
+  for (std::size_t p = 0; p < vertices.size(); ++p)
+    ASSERT_EQ(embedding.Displacement(p, patient.liver_displacement()), Eigen::Vector3d::Zero());
+  patient.Update(1.0);  // peak inspiration at 0.25 Hz
+  const double tendon = patient.snapshot().tendon_displacement_m;
+  std::size_t top = 0, bottom = 0;
+  for (std::size_t p = 0; p < vertices.size(); ++p) {
+    if (vertices[p].z() > vertices[top].z()) top = p;
+    if (vertices[p].z() < vertices[bottom].z()) bottom = p;
+  }
+  const double top_dz = embedding.Displacement(top, patient.liver_displacement()).z();
+  const double bottom_dz = embedding.Displacement(bottom, patient.liver_displacement()).z();
+  EXPECT_NEAR(top_dz, -tendon, 0.2 * tendon);
+  EXPECT_LT(std::abs(bottom_dz), std::abs(top_dz));
 }
 
 }  // namespace
