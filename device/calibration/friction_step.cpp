@@ -66,40 +66,54 @@ void IdentifyFriction(StepContext& ctx) {
   ctx.RunUntil(all_arrived, 30.0, "friction: joints did not reach the sweep start");
   for (std::size_t k = 0; k < segments; ++k) {
     for (int direction : {+1, -1}) {
-      std::array<Window, 3> w;
-      std::array<bool, 3> active{};
-      for (int j = 0; j < 3; ++j) {
-        if (!ctx.selected(j) || k >= ctx.plan.friction_speeds[j].size()) continue;
-        active[j] = true;
-        const double length = b[j] - a[j];
-        // The middle half of the sweep: the start's transient has died out.
-        w[j].lo = a[j] + 0.25 * length;
-        w[j].hi = b[j] - 0.25 * length;
-        servo.MoveTo(j, direction > 0 ? b[j] : a[j], ctx.plan.friction_speeds[j][k]);
-      }
-      ctx.RunUntil(
-          [&] {
-            bool done = true;
-            for (int j = 0; j < 3; ++j) {
-              if (!active[j]) continue;
-              const double p = ctx.link.sample().position[j];
-              if (!servo.arrived(j) && p >= w[j].lo && p <= w[j].hi)
-                w[j].Add(ctx.link.sample().t_s, p, servo.torque(j), ctx.link.sample().limiter != fp::Limiter::None);
-              done = done && servo.arrived(j);
-            }
-            return done;
-          },
-          120.0, "friction: a sweep did not finish");
-      ctx.RunFor(0.1);
-      for (int j = 0; j < 3; ++j) {
-        if (!active[j]) continue;
-        if (w[j].n < 20 || w[j].time < 0.5 * (w[j].t1 - w[j].t0))
-          throw CalibrationAbort(AbortReason::kMeasurement,
-                                 "friction: joint " + std::to_string(j) + " sweep too short to measure");
-        FrictionSegment s;
-        s.velocity = (w[j].p1 - w[j].p0) / (w[j].t1 - w[j].t0);
-        s.torque = w[j].mean_torque();
-        ctx.result.joint[j].friction_segments.push_back(s);
+      // A sweep that did not hold its speed within 5 % (a host or an arm that stalled: its
+      // commands came late) is swept again, from its start, up to twice; the checks judge the last.
+      for (int attempt = 0;; ++attempt) {
+        std::array<Window, 3> w;
+        std::array<bool, 3> active{};
+        for (int j = 0; j < 3; ++j) {
+          if (!ctx.selected(j) || k >= ctx.plan.friction_speeds[j].size()) continue;
+          active[j] = true;
+          const double length = b[j] - a[j];
+          // The middle half of the sweep: the start's transient has died out.
+          w[j].lo = a[j] + 0.25 * length;
+          w[j].hi = b[j] - 0.25 * length;
+          servo.MoveTo(j, direction > 0 ? b[j] : a[j], ctx.plan.friction_speeds[j][k]);
+        }
+        ctx.RunUntil(
+            [&] {
+              bool done = true;
+              for (int j = 0; j < 3; ++j) {
+                if (!active[j]) continue;
+                const double p = ctx.link.sample().position[j];
+                if (!servo.arrived(j) && p >= w[j].lo && p <= w[j].hi)
+                  w[j].Add(ctx.link.sample().t_s, p, servo.torque(j), ctx.link.sample().limiter != fp::Limiter::None);
+                done = done && servo.arrived(j);
+              }
+              return done;
+            },
+            120.0, "friction: a sweep did not finish");
+        ctx.RunFor(0.1);
+        std::array<FrictionSegment, 3> found{};
+        bool steady = true;
+        for (int j = 0; j < 3; ++j) {
+          if (!active[j]) continue;
+          if (w[j].n < 20 || w[j].time < 0.5 * (w[j].t1 - w[j].t0))
+            throw CalibrationAbort(AbortReason::kMeasurement,
+                                   "friction: joint " + std::to_string(j) + " sweep too short to measure");
+          found[j].velocity = (w[j].p1 - w[j].p0) / (w[j].t1 - w[j].t0);
+          found[j].torque = w[j].mean_torque();
+          const double speed = ctx.plan.friction_speeds[j][k];
+          steady = steady && std::abs(found[j].velocity - direction * speed) <= 0.05 * speed;
+        }
+        if (steady || attempt == 2) {
+          for (int j = 0; j < 3; ++j)
+            if (active[j]) ctx.result.joint[j].friction_segments.push_back(found[j]);
+          break;
+        }
+        for (int j = 0; j < 3; ++j)
+          if (active[j]) servo.MoveTo(j, direction > 0 ? a[j] : b[j], ctx.plan.move_speed[j]);
+        ctx.RunUntil(all_arrived, 30.0, "friction: joints did not return to a sweep's start");
       }
       ctx.Progress("friction",
                    static_cast<double>(2 * k + (direction > 0 ? 1 : 2)) / static_cast<double>(2 * segments));
