@@ -41,10 +41,10 @@ std::string_view ToString(ActuationLimit limit);
 /// Currents for a tip force, after saturation. The whole force is scaled by one factor so its
 /// direction is kept (a clipped component would push the hand sideways).
 struct MotorCurrentCommand {
-  Eigen::Vector3d current_A = Eigen::Vector3d::Zero();     ///< yaw, pitch, insertion: the tip force's and the feed-forward
-  Eigen::Vector3d feedforward_A = Eigen::Vector3d::Zero(); ///< part of current_A that compensates the arm itself
-  Eigen::Vector4d joint_effort = Eigen::Vector4d::Zero();  ///< of the tip force: yaw, pitch, roll (0), insertion
-  Eigen::Vector3d f_rendered_T = Eigen::Vector3d::Zero();  ///< the force after scaling, N
+  Eigen::Vector3d current_A = Eigen::Vector3d::Zero();      ///< yaw, pitch, insertion: tip force + feed-forward
+  Eigen::Vector3d feedforward_A = Eigen::Vector3d::Zero();  ///< of current_A, what compensates the arm itself
+  Eigen::Vector4d joint_effort = Eigen::Vector4d::Zero();   ///< the tip force's: yaw, pitch, roll (0), insertion
+  Eigen::Vector3d f_rendered_T = Eigen::Vector3d::Zero();   ///< the force after scaling, N
   double scale = 1.0;                                       ///< in [0, 1]
   ActuationLimit active_limit = ActuationLimit::kNone;
 };
