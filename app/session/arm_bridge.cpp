@@ -26,6 +26,16 @@ std::string LinkOf(const InstrumentConfig& c, const ArmBridgeOptions& o) {
          " (vesica-armsim --node-id " + std::to_string(c.can_node_id) + ")";
 }
 
+// What the technician runs for this arm when it has no valid calibration: the same bus as ours.
+std::string CalibrateCommandOf(const InstrumentConfig& c, const ArmBridgeOptions& o) {
+  std::string bus;
+  if (c.input == InputKind::kCanArm)
+    bus = " --can " + c.can_interface;
+  else if (o.udp_base_port != ArmBridgeOptions{}.udp_base_port)
+    bus = " --udp-base-port " + std::to_string(o.udp_base_port);
+  return "vesica-calibrate" + bus + " calibrate " + std::to_string(c.can_node_id);
+}
+
 std::unique_ptr<fp::Transport> OpenTransport(const InstrumentConfig& c, const ArmBridgeOptions& o) {
   std::string error;
   std::unique_ptr<fp::Transport> t;
@@ -97,6 +107,7 @@ ArmBridge::ArmBridge(const Scenario& scenario, const ArmBridgeOptions& options) 
     device::ArmSupervisorConfig sc;
     sc.name = SideOf(slot);
     sc.link = LinkOf(c, options);
+    sc.calibrate_command = CalibrateCommandOf(c, options);
     supervisors_[slot] = std::make_unique<device::ArmSupervisor>(*arms_[slot], sc);
     names_[slot] = c.name;
   }
