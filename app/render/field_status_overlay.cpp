@@ -44,15 +44,18 @@ FieldStatusOverlay::FieldStatusOverlay(vtkRenderer* renderer, int grasper, int h
     : renderer_(renderer), grasper_(grasper), hook_(hook) {
   grasp_ = Label(renderer, VTK_TEXT_LEFT, 0.015, 0.02);
   pedal_ = Label(renderer, VTK_TEXT_RIGHT, 0.985, 0.02);
-  arms_ = Label(renderer, VTK_TEXT_CENTERED, 0.5, 0.02);
+  arms_ = Label(renderer, VTK_TEXT_CENTERED, 0.5, 0.06);  // above the hands' row (Update)
   Update(RenderFrame{});
 }
 
 void FieldStatusOverlay::Update(const RenderFrame& frame) {
   // Text in proportion to the picture: 18 px at 720 rows, legible and out of the way at any size.
   const int rows = renderer_->GetSize()[1] > 0 ? renderer_->GetSize()[1] : 720;
-  for (vtkTextActor* label : {grasp_.Get(), pedal_.Get(), arms_.Get()})
-    label->GetTextProperty()->SetFontSize(std::clamp(rows / 40, 8, 30));
+  const int font_px = std::clamp(rows / 40, 8, 30);
+  for (vtkTextActor* label : {grasp_.Get(), pedal_.Get(), arms_.Get()}) label->GetTextProperty()->SetFontSize(font_px);
+  // The arms' lines stand one text row above the hands' labels: a long one ("no valid
+  // calibration; run ...") must not run into them.
+  arms_->GetPositionCoordinate()->SetValue(0.5, 0.02 + 1.6 * font_px / rows);
   const auto instrument = [&](int i) -> const InstrumentFrame* {
     return i >= 0 && static_cast<std::size_t>(i) < frame.instruments.size() ? &frame.instruments[i] : nullptr;
   };
@@ -82,7 +85,7 @@ void FieldStatusOverlay::Update(const RenderFrame& frame) {
   std::string arms;
   bool arm_fault = false;
   for (const std::string& line : frame.arm_status) {
-    arms += (arms.empty() ? "" : "   ") + line;
+    arms += (arms.empty() ? "" : "\n") + line;  // one arm a line
     arm_fault = arm_fault || line.find(" ok") == std::string::npos;
   }
   Show(arms_, arms, arm_fault ? kSlipRgb : kStatusIdleRgb);

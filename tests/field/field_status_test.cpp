@@ -46,9 +46,9 @@ class FieldStatusTest : public ::testing::Test {
   // Pixels of the bottom strip (the labels' band) in the given horizontal range that match in
   // `pic` and did not in `before` (the context organs there keep their colours between frames).
   static int Count(const Picture& pic, const Picture& before, int col0, int col1,
-                   const std::function<bool(Rgb)>& match) {
+                   const std::function<bool(Rgb)>& match, int band_rows = 40) {
     int n = 0;
-    for (int row = kHeight - 40; row < kHeight; ++row)
+    for (int row = kHeight - band_rows; row < kHeight; ++row)
       for (int col = col0; col < col1; ++col) n += match(pic.at(col, row)) && !match(before.at(col, row));
     return n;
   }
@@ -104,16 +104,37 @@ TEST_F(FieldStatusTest, EachArmsLinkIsShownAndAFaultStandsOut) {
   RenderFrame f = Frame(false, false, false, false);
   f.arm_status = {"left arm ok", "right arm ok"};
   view.Update(f);
-  EXPECT_EQ(view.status().arm_text(), "left arm ok   right arm ok");
+  EXPECT_EQ(view.status().arm_text(), "left arm ok\nright arm ok");
   const Picture ok = render.Render(view);
   f.arm_status = {"left arm ok", "right arm FAULT overcurrent"};
   view.Update(f);
-  EXPECT_EQ(view.status().arm_text(), "left arm ok   right arm FAULT overcurrent");
+  EXPECT_EQ(view.status().arm_text(), "left arm ok\nright arm FAULT overcurrent");
   const Picture fault = render.Render(view);
   const int left = kWidth / 3, right = 2 * kWidth / 3;
-  EXPECT_GT(Count(fault, ok, left, right, IsSlipAmber), 30);
+  EXPECT_GT(Count(fault, ok, left, right, IsSlipAmber, 80), 30);
   // Centred: none in the outer sixths, where the hands' labels are.
-  EXPECT_EQ(Count(fault, ok, 0, kWidth / 6, IsSlipAmber) + Count(fault, ok, 5 * kWidth / 6, kWidth, IsSlipAmber), 0);
+  EXPECT_EQ(Count(fault, ok, 0, kWidth / 6, IsSlipAmber, 80) + Count(fault, ok, 5 * kWidth / 6, kWidth, IsSlipAmber, 80),
+            0);
+}
+
+// An arm's line as long as the picture is wide (an uncalibrated arm says what to run) stands
+// above the hands' labels, not over them: none of it in their row.
+TEST_F(FieldStatusTest, ALongArmLineStaysAboveTheHandsLabels) {
+  LaparoscopeView view(*scenario_, *meshes_);
+  view_poses_ = &view.poses();
+  OffscreenRender render(kWidth, kHeight);
+  RenderFrame f = Frame(false, false, false, false);
+  view.Update(f);
+  const Picture plain = render.Render(view);
+  f.arm_status = {"left arm (node 1): no valid calibration (slot A: blank, slot B: blank); run `vesica-calibrate "
+                  "--udp-base-port 24000 calibrate 1` (grasper)",
+                  "right arm: ok (hook)"};
+  view.Update(f);
+  const Picture warned = render.Render(view);
+  // The hands' row: 2 % of the height up, one text line (13 px at 540 rows) and its margin.
+  const int hands_row = static_cast<int>(0.02 * kHeight) + 20;
+  EXPECT_GT(Count(warned, plain, 0, kWidth, IsSlipAmber, 80), 100);  // it is there...
+  EXPECT_EQ(Count(warned, plain, 0, kWidth, IsSlipAmber, hands_row), 0);  // ...but not in their row
 }
 
 }  // namespace
