@@ -103,17 +103,17 @@ void NodeCalibrationReader::Evaluate() {
                    : "the node refused to read " + name + " (abort code " + Hex(refused_code_) + ")";
     return;
   }
-  slots_.active_slot = raw_[kActive] < 2 ? static_cast<int>(raw_[kActive]) : -1;
-  slots_.slot_status = {SlotStatus(raw_[kSlotA]), SlotStatus(raw_[kSlotB])};
-  slots_.calibration_tool_version = raw_[kTool];
-  slots_.calibration_date_s = raw_[kDate];
-  if (slots_.active_slot < 0) {
-    problem_ = "slot A: " + calibration::NodeInfo::SlotText(slots_.slot_status[0]) +
-               ", slot B: " + calibration::NodeInfo::SlotText(slots_.slot_status[1]);
+  stored_slots_.active_slot = raw_[kActive] < 2 ? static_cast<int>(raw_[kActive]) : -1;
+  stored_slots_.slot_status = {SlotStatus(raw_[kSlotA]), SlotStatus(raw_[kSlotB])};
+  stored_slots_.calibration_tool_version = raw_[kTool];
+  stored_slots_.calibration_date_s = raw_[kDate];
+  if (stored_slots_.active_slot < 0) {
+    problem_ = "slot A: " + calibration::NodeInfo::SlotText(stored_slots_.slot_status[0]) +
+               ", slot B: " + calibration::NodeInfo::SlotText(stored_slots_.slot_status[1]);
     return;
   }
-  const std::string slot = slots_.active_slot == 0 ? "A" : "B";
-  if (slots_.calibration_tool_version == 0) {
+  const std::string slot = stored_slots_.active_slot == 0 ? "A" : "B";
+  if (stored_slots_.calibration_tool_version == 0) {
     problem_ = "slot " + slot + " holds settings only, written by no calibration";
     return;
   }

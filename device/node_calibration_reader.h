@@ -34,7 +34,7 @@ class NodeCalibrationReader {
   /// Valid only in state kValid.
   const ArmCalibration& calibration() const { return calibration_; }
   /// The slots as read (meaningful once reading is over).
-  const calibration::NodeInfo& slots() const { return slots_; }
+  const calibration::NodeInfo& stored_slots() const { return stored_slots_; }
   /// Why the calibration is not valid, in words ("slot A: blank, slot B: blank"); empty otherwise.
   const std::string& problem() const { return problem_; }
 
@@ -50,7 +50,7 @@ class NodeCalibrationReader {
   std::uint16_t refused_index_ = 0;
   std::uint32_t refused_code_ = 0;
   ArmCalibration calibration_;
-  calibration::NodeInfo slots_;
+  calibration::NodeInfo stored_slots_;
   std::string problem_;
 };
 

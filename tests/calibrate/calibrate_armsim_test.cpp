@@ -53,8 +53,9 @@ TEST(CalibrateArmsim, ScanFindsBothArmsWithIdentityVersionsStateFaultsAndSlots) 
     EXPECT_EQ(a["fault_count"], 0);
     ASSERT_EQ(a["slots"].size(), 2u);
   }
-  // A blank board (node 1) has no calibration; the emulator stores node 2's id on first boot,
-  // so its slot A is valid (generation 1) and in use.
+  // A blank board (node 1) has no calibration. Node 2 leaves the factory with slot A written
+  // (generation 1: its node id and the design's values, tool version 0), valid and in use, though
+  // a slot that no calibration tool wrote counts as no calibration to the bridge.
   EXPECT_EQ(j["arms"][0]["active_slot"], nullptr);
   EXPECT_EQ(j["arms"][0]["slots"][0]["status"], "blank");
   EXPECT_EQ(j["arms"][0]["slots"][1]["status"], "blank");

@@ -80,9 +80,22 @@ inline ToolRun RunTool(const std::vector<std::string>& args, const std::string& 
   return r;
 }
 
-/// A fresh, empty folder under the test's working directory.
+/// A fresh, empty folder in the system's temporary directory (never the working directory: a
+/// test run from the repository root would leave its folders there), one per test process so
+/// that parallel runs of several build directories do not share one. It and anything named after
+/// it (d + "-corrupt.vcal") go when the test program ends.
 inline std::string FreshDir(const std::string& name) {
-  const std::string d = std::filesystem::absolute("calibrate-test-" + name).string();
+  struct Removed {
+    std::filesystem::path root =
+        std::filesystem::temp_directory_path() / ("vesica-calibrate-test-" + std::to_string(getpid()));
+    ~Removed() {
+      std::error_code ignored;
+      std::filesystem::remove_all(root, ignored);
+    }
+  };
+  static const Removed removed;
+  std::filesystem::create_directories(removed.root);
+  const std::string d = (removed.root / name).string();
   std::filesystem::remove_all(d);
   return d;
 }
