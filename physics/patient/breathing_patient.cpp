@@ -202,15 +202,16 @@ void BreathingPatient::Update(double t_s) {
   for (std::size_t r = 0; r < m.ribs.size(); ++r)
     snapshot_.ribs[r] = PoseRib(m.ribs[r], snapshot_.signal, settings_.thoracic_scale);
 
-  MoveDiaphragm(tendon);
-  MoveLiver();
-  PushLiverCapsule();
-
   const auto place = [](const std::vector<Eigen::Vector3d>& rest, const std::vector<Eigen::Vector3d>& u,
                         std::vector<Eigen::Vector3d>& out) {
     out.resize(rest.size());
     for (std::size_t i = 0; i < rest.size(); ++i) out[i] = rest[i] + u[i];
   };
+  MoveDiaphragm(tendon);
+  MoveLiver();
+  place(m.liver.lattice.rest_m, u_liver_, snapshot_.liver_breathing_m);
+  PushLiverCapsule();
+
   place(m.diaphragm.lattice.rest_m, u_diaphragm_, snapshot_.diaphragm_m);
   place(m.liver.lattice.rest_m, u_liver_, snapshot_.liver_m);
   snapshot_.tumour_centre_m = m.liver.tumour_centre_m;

@@ -29,6 +29,10 @@ struct PatientSnapshot {
   std::vector<RibPose> ribs;                 ///< one per model rib, same order
   std::vector<Eigen::Vector3d> diaphragm_m;  ///< diaphragm lattice elements, world
   std::vector<Eigen::Vector3d> liver_m;      ///< liver lattice elements, world
+  /// The same before the needle's capsule push: the breathing alone. The needle's haptics map the
+  /// CT through it, so that the capsule's depth under the tip is measured from where the capsule
+  /// would be without the needle (physics/needle).
+  std::vector<Eigen::Vector3d> liver_breathing_m;
   Eigen::Vector3d tumour_centre_m = Eigen::Vector3d::Zero();
   Eigen::Vector3d coupling_force_N = Eigen::Vector3d::Zero();  ///< sum of the diaphragm's pull on the liver
   int capsule_pushed[3] = {-1, -1, -1};                        ///< liver elements under the needle, -1 when none
