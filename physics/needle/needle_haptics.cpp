@@ -107,7 +107,9 @@ const NeedleForces& NeedleHaptics::Update(const NeedlePose& pose, double now_s) 
   ct_.SetBlend((now_s - patient_time_s_) / p.blend_s);
   const CtSample tip = ct_.Sample(P);
   const bool was_inside = inside_;
-  if (!(tip.body_fraction > 0.0)) {  // seed 5.2: never a force outside the body
+  // Seed 5.2: never a force outside the body. A share under 1e-9 is rounding in the voxel index
+  // (a tip on a voxel's centre plane), not tissue.
+  if (!(tip.body_fraction > 1e-9)) {
     Withdrawn();
     forces_.tip_label = tip.label;
     last_tip_ = P;
