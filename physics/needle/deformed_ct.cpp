@@ -28,13 +28,22 @@ Corners TrilinearCorners(const LabelVolume& volume, const Eigen::Vector3d& v) {
   const int i0 = static_cast<int>(std::floor(v.x())), j0 = static_cast<int>(std::floor(v.y())),
             k0 = static_cast<int>(std::floor(v.z()));
   const double fx = v.x() - i0, fy = v.y() - j0, fz = v.z() - k0;
+  const double wx[2] = {1 - fx, fx}, wy[2] = {1 - fy, fy}, wz[2] = {1 - fz, fz};
+  const int* d = volume.dims.data();
+  const bool interior = i0 >= 0 && j0 >= 0 && k0 >= 0 && i0 + 1 < d[0] && j0 + 1 < d[1] && k0 + 1 < d[2];
+  const std::size_t sx = 1, sy = static_cast<std::size_t>(d[0]), sz = sy * static_cast<std::size_t>(d[1]);
+  const std::size_t base = interior ? volume.Index(i0, j0, k0) : 0;
   int n = 0;
   for (int dk = 0; dk < 2; ++dk)
     for (int dj = 0; dj < 2; ++dj)
       for (int di = 0; di < 2; ++di, ++n) {
+        c.weight[n] = wx[di] * wy[dj] * wz[dk];
+        if (interior) {
+          c.index[n] = base + di * sx + dj * sy + dk * sz;
+          continue;
+        }
         const int i = i0 + di, j = j0 + dj, k = k0 + dk;
-        c.weight[n] = (di ? fx : 1 - fx) * (dj ? fy : 1 - fy) * (dk ? fz : 1 - fz);
-        const bool in = i >= 0 && j >= 0 && k >= 0 && i < volume.dims[0] && j < volume.dims[1] && k < volume.dims[2];
+        const bool in = i >= 0 && j >= 0 && k >= 0 && i < d[0] && j < d[1] && k < d[2];
         c.index[n] = in ? volume.Index(i, j, k) : std::numeric_limits<std::size_t>::max();
       }
   return c;
@@ -43,8 +52,40 @@ std::size_t NearestCorner(const Corners& c) {
   return static_cast<std::size_t>(std::max_element(std::begin(c.weight), std::end(c.weight)) - std::begin(c.weight));
 }
 
+// Chebyshev distance in blocks to the nearest block holding an element, capped at 255.
+std::vector<std::uint8_t> BlockReach(const BlockLattice& lattice) {
+  const auto& d = lattice.block_dims;
+  std::vector<std::uint8_t> reach(lattice.element_of_block.size(), 255);
+  std::vector<std::size_t> frontier, next;
+  for (std::size_t b = 0; b < reach.size(); ++b)
+    if (lattice.element_of_block[b] >= 0) {
+      reach[b] = 0;
+      frontier.push_back(b);
+    }
+  for (int level = 1; level < 255 && !frontier.empty(); ++level) {
+    next.clear();
+    for (std::size_t b : frontier) {
+      const int bi = static_cast<int>(b % d[0]), bj = static_cast<int>((b / d[0]) % d[1]),
+                bk = static_cast<int>(b / (static_cast<std::size_t>(d[0]) * d[1]));
+      for (int dk = -1; dk <= 1; ++dk)
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di) {
+            const int i = bi + di, j = bj + dj, k = bk + dk;
+            if (i < 0 || j < 0 || k < 0 || i >= d[0] || j >= d[1] || k >= d[2]) continue;
+            const std::size_t n = static_cast<std::size_t>(i + d[0] * (j + d[1] * k));
+            if (reach[n] != 255) continue;
+            reach[n] = static_cast<std::uint8_t>(level);
+            next.push_back(n);
+          }
+    }
+    std::swap(frontier, next);
+  }
+  return reach;
+}
+
 bool InBox(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double margin) {
-  return (p.array() >= lo.array() - margin).all() && (p.array() <= hi.array() + margin).all();
+  return p.x() >= lo.x() - margin && p.y() >= lo.y() - margin && p.z() >= lo.z() - margin && p.x() <= hi.x() + margin &&
+         p.y() <= hi.y() + margin && p.z() <= hi.z() + margin;
 }
 
 }  // namespace
@@ -97,6 +138,32 @@ std::shared_ptr<const DeformedCtModel> BuildDeformedCtModel(std::shared_ptr<cons
         lo = lo.cwiseMin(p);
         hi = hi.cwiseMax(p);
       }
+  if (ribs > 32) throw std::invalid_argument("deformed CT: more than 32 ribs");
+  // Each rib's cells, dilated by one cell.
+  constexpr int kCell = DeformedCtModel::kRibCellVoxels;
+  for (int c = 0; c < 3; ++c) m->rib_cell_dims[c] = (v.dims[c] + kCell - 1) / kCell;
+  const auto& cd = m->rib_cell_dims;
+  const auto cell_index = [&](int ci, int cj, int ck) {
+    return static_cast<std::size_t>(ci + cd[0] * (cj + cd[1] * ck));
+  };
+  m->rib_cells.assign(static_cast<std::size_t>(cd[0]) * cd[1] * cd[2], 0);
+  for (int k = 0; k < v.dims[2]; ++k)
+    for (int j = 0; j < v.dims[1]; ++j)
+      for (int i = 0; i < v.dims[0]; ++i) {
+        const std::uint8_t b = m->body[v.Index(i, j, k)];
+        if (b < kFirstRibBody) continue;
+        const std::uint32_t bit = 1u << (b - kFirstRibBody);
+        const int ci = i / kCell, cj = j / kCell, ck = k / kCell;
+        for (int dk = -1; dk <= 1; ++dk)
+          for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) {
+              const int a = ci + di, bb = cj + dj, cc = ck + dk;
+              if (a < 0 || bb < 0 || cc < 0 || a >= cd[0] || bb >= cd[1] || cc >= cd[2]) continue;
+              m->rib_cells[cell_index(a, bb, cc)] |= bit;
+            }
+      }
+  m->liver_block_reach = BlockReach(patient->liver.lattice);
+  m->diaphragm_block_reach = BlockReach(patient->diaphragm.lattice);
   return m;
 }
 
@@ -112,38 +179,33 @@ DeformedCt::DeformedCt(std::shared_ptr<const DeformedCtModel> model) : model_(st
   SetBlend(1.0);
 }
 
-void DeformedCt::CaptureBlend(BodyState& out) const {
-  const double w = w_;
-  for (std::size_t e = 0; e < out.u_liver.size(); ++e)
-    out.u_liver[e] = (1 - w) * prev_.u_liver[e] + w * now_.u_liver[e];
-  for (std::size_t e = 0; e < out.u_diaphragm.size(); ++e)
-    out.u_diaphragm[e] = (1 - w) * prev_.u_diaphragm[e] + w * now_.u_diaphragm[e];
-  out.rib_rotation = rib_rotation_;
-  out.tumour_m = (1 - w) * prev_.tumour_m + w * now_.tumour_m;
-  out.max_u_m = max_u_m_;
-}
-
 void DeformedCt::SetPatient(const PatientSnapshot& snapshot) {
   const BreathingPatientModel& p = *model_->patient;
   const auto& liver = snapshot.liver_breathing_m.empty() ? snapshot.liver_m : snapshot.liver_breathing_m;
   if (liver.size() != now_.u_liver.size() || snapshot.diaphragm_m.size() != now_.u_diaphragm.size() ||
       snapshot.ribs.size() != now_.rib_rotation.size())
     throw std::invalid_argument("deformed CT: the patient snapshot is of another model");
-  BodyState blended = prev_;  // reuse its storage
-  CaptureBlend(blended);
-  prev_ = std::move(blended);
+  // The state blended now becomes the previous one (in place: no allocation on the haptic thread).
+  const double w = w_;
+  for (std::size_t e = 0; e < prev_.u_liver.size(); ++e)
+    prev_.u_liver[e] = (1 - w) * prev_.u_liver[e] + w * now_.u_liver[e];
+  for (std::size_t e = 0; e < prev_.u_diaphragm.size(); ++e)
+    prev_.u_diaphragm[e] = (1 - w) * prev_.u_diaphragm[e] + w * now_.u_diaphragm[e];
+  prev_.rib_rotation = rib_rotation_;
+  prev_.tumour_m = (1 - w) * prev_.tumour_m + w * now_.tumour_m;
+  prev_.max_u_m = max_u_m_;
   double max_u = 0.0;
   for (std::size_t e = 0; e < liver.size(); ++e) {
     now_.u_liver[e] = liver[e] - p.liver.lattice.rest_m[e];
-    max_u = std::max(max_u, now_.u_liver[e].norm());
+    max_u = std::max(max_u, now_.u_liver[e].squaredNorm());
   }
   for (std::size_t e = 0; e < snapshot.diaphragm_m.size(); ++e) {
     now_.u_diaphragm[e] = snapshot.diaphragm_m[e] - p.diaphragm.lattice.rest_m[e];
-    max_u = std::max(max_u, now_.u_diaphragm[e].norm());
+    max_u = std::max(max_u, now_.u_diaphragm[e].squaredNorm());
   }
   for (std::size_t r = 0; r < snapshot.ribs.size(); ++r) now_.rib_rotation[r] = snapshot.ribs[r].rotation;
   now_.tumour_m = snapshot.tumour_centre_m;
-  now_.max_u_m = max_u;
+  now_.max_u_m = std::sqrt(max_u);
   w_ = 0.0;
   SetBlend(0.0);
 }
@@ -209,10 +271,36 @@ Eigen::Vector3d DeformedCt::LatticeDisplacement(const BlockLattice& lattice, con
   return weight > 0.0 ? Eigen::Vector3d(sum / weight) : Eigen::Vector3d::Zero();
 }
 
+bool DeformedCt::MayBeNear(const BlockLattice& lattice, const std::vector<std::uint8_t>& reach,
+                           const Eigen::Vector3d& p) const {
+  const LabelVolume& v = model_->patient->volume;
+  const Eigen::Vector3d idx = model_->to_index * (p - v.origin_m);
+  const double n = lattice.block_voxels;
+  int b[3];
+  for (int c = 0; c < 3; ++c) {
+    b[c] = static_cast<int>(std::floor((idx[c] + 0.5) / n));
+    if (b[c] < 0 || b[c] >= lattice.block_dims[c]) return true;  // beyond the grid: the box decides
+  }
+  const double blocks =
+      reach[static_cast<std::size_t>(b[0] + lattice.block_dims[0] * (b[1] + lattice.block_dims[1] * b[2]))];
+  // An element's voxels lie within its block; one block more for the trilinear reach.
+  return (blocks - 2.0) * n * model_->min_spacing_m <= max_u_m_;
+}
+
 Eigen::Vector3d DeformedCt::InvertLattice(const BlockLattice& lattice, const std::vector<Eigen::Vector3d>& u_prev,
-                                          const std::vector<Eigen::Vector3d>& u_now, const Eigen::Vector3d& p) const {
-  Eigen::Vector3d q = p;
-  for (int step = 0; step < kInversionSteps; ++step) q = p - LatticeDisplacement(lattice, u_prev, u_now, q);
+                                          const std::vector<Eigen::Vector3d>& u_now, const Eigen::Vector3d& p,
+                                          bool* warm_valid, Eigen::Vector3d* warm_u) const {
+  const bool warm = warm_valid && *warm_valid;
+  Eigen::Vector3d q = warm ? Eigen::Vector3d(p - *warm_u) : p;
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();
+  for (int step = 0; step < (warm ? 1 : kInversionSteps); ++step) {
+    u = LatticeDisplacement(lattice, u_prev, u_now, q);
+    q = p - u;
+  }
+  if (warm_valid) {
+    *warm_valid = true;
+    *warm_u = u;
+  }
   return q;
 }
 
@@ -226,7 +314,7 @@ Eigen::Vector3d DeformedCt::LiverWorldPoint(const Eigen::Vector3d& q_rest) const
 
 Eigen::Vector3d DeformedCt::TumourCentre_m() const { return (1 - w_) * prev_.tumour_m + w_ * now_.tumour_m; }
 
-CtSample DeformedCt::Sample(const Eigen::Vector3d& p_W) const {
+CtSample DeformedCt::Sample(const Eigen::Vector3d& p_W, SampleHint* hint) const {
   const DeformedCtModel& m = *model_;
   const BreathingPatientModel& patient = *m.patient;
   const LabelVolume& v = patient.volume;
@@ -277,14 +365,28 @@ CtSample DeformedCt::Sample(const Eigen::Vector3d& p_W) const {
     return o;
   };
   const double margin = max_u_m_ + 2.0 * v.spacing_m.maxCoeff();
-  if (InBox(p_W, m.liver_lo_m, m.liver_hi_m, margin)) out.liver_occupancy = composite(LiverRestPoint(p_W), kLiverBody);
-  if (InBox(p_W, m.diaphragm_lo_m, m.diaphragm_hi_m, margin))
-    composite(InvertLattice(patient.diaphragm.lattice, prev_.u_diaphragm, now_.u_diaphragm, p_W), kDiaphragmBody);
+  if (InBox(p_W, m.liver_lo_m, m.liver_hi_m, margin) && MayBeNear(patient.liver.lattice, m.liver_block_reach, p_W))
+    out.liver_occupancy = composite(InvertLattice(patient.liver.lattice, prev_.u_liver, now_.u_liver, p_W,
+                                                  hint ? &hint->liver : nullptr, hint ? &hint->u_liver_m : nullptr),
+                                    kLiverBody);
+  if (InBox(p_W, m.diaphragm_lo_m, m.diaphragm_hi_m, margin) &&
+      MayBeNear(patient.diaphragm.lattice, m.diaphragm_block_reach, p_W))
+    composite(InvertLattice(patient.diaphragm.lattice, prev_.u_diaphragm, now_.u_diaphragm, p_W,
+                            hint ? &hint->diaphragm : nullptr, hint ? &hint->u_diaphragm_m : nullptr),
+              kDiaphragmBody);
   const double rib_margin = 2.0 * v.spacing_m.maxCoeff();
   for (std::size_t r = 0; r < rib_rotation_.size(); ++r) {
     if (!InBox(p_W, rib_box_lo_[r], rib_box_hi_[r], rib_margin)) continue;
     const Eigen::Vector3d& c = patient.ribs[r].centre_m;
-    composite(c + rib_rotation_[r].transpose() * (p_W - c), static_cast<std::uint8_t>(kFirstRibBody + r));
+    const Eigen::Vector3d q = c + rib_rotation_[r].transpose() * (p_W - c);
+    const Eigen::Vector3d cell = (m.to_index * (q - v.origin_m)).array() / DeformedCtModel::kRibCellVoxels;
+    const int ci = static_cast<int>(std::floor(cell.x() + 0.5 / DeformedCtModel::kRibCellVoxels)),
+              cj = static_cast<int>(std::floor(cell.y() + 0.5 / DeformedCtModel::kRibCellVoxels)),
+              ck = static_cast<int>(std::floor(cell.z() + 0.5 / DeformedCtModel::kRibCellVoxels));
+    const auto& cd = m.rib_cell_dims;
+    if (ci < 0 || cj < 0 || ck < 0 || ci >= cd[0] || cj >= cd[1] || ck >= cd[2]) continue;
+    if (!(m.rib_cells[static_cast<std::size_t>(ci + cd[0] * (cj + cd[1] * ck))] & (1u << r))) continue;
+    composite(q, static_cast<std::uint8_t>(kFirstRibBody + r));
   }
 
   // Moving organs over the still ones; at end tidal this is the rest CT's trilinear value.

@@ -14,6 +14,7 @@
 // (SetBlend), so that nothing it samples jumps when the physics publishes a new snapshot.
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -39,6 +40,15 @@ struct DeformedCtModel {
   Eigen::Matrix3d to_index = Eigen::Matrix3d::Identity();  ///< world offset from the origin -> voxel index
   Eigen::Vector3d liver_lo_m, liver_hi_m, diaphragm_lo_m, diaphragm_hi_m;  ///< rest bounding boxes
   std::vector<Eigen::Vector3d> rib_lo_m, rib_hi_m;                         ///< per rib, its voxels' rest bounding box
+  /// Per block of the liver's / diaphragm's lattice grid, how many blocks (Chebyshev, capped at
+  /// 255) to the nearest block with an element: a point whose block is further than the organ's
+  /// largest displacement cannot be in it, and its inversion is skipped.
+  std::vector<std::uint8_t> liver_block_reach, diaphragm_block_reach;
+  /// Per cube of kRibCellVoxels^3 voxels, a bit per rib (model order) whose voxels lie in it or in
+  /// a touching cube: a rib's rest point outside its cells is skipped before any voxel is read.
+  static constexpr int kRibCellVoxels = 4;
+  std::array<int, 3> rib_cell_dims{0, 0, 0};
+  std::vector<std::uint32_t> rib_cells;
   double min_spacing_m = 0.0;
 };
 inline constexpr std::uint8_t kStillBody = 0, kLiverBody = 1, kDiaphragmBody = 2, kFirstRibBody = 3;
@@ -58,7 +68,13 @@ class DeformedCt {
   /// w in [0, 1]: 0 the previous state, 1 the latest. Clamped.
   void SetBlend(double w);
 
-  [[nodiscard]] CtSample Sample(const Eigen::Vector3d& p_W) const;
+  /// Sampling many points close together (along a needle), the displacement found at one point
+  /// starts the inversion at the next: one fixed-point step instead of three.
+  struct SampleHint {
+    bool liver = false, diaphragm = false;
+    Eigen::Vector3d u_liver_m = Eigen::Vector3d::Zero(), u_diaphragm_m = Eigen::Vector3d::Zero();
+  };
+  [[nodiscard]] CtSample Sample(const Eigen::Vector3d& p_W, SampleHint* hint = nullptr) const;
   /// The liver's rest point now at p_W (inverting its breathing displacement).
   [[nodiscard]] Eigen::Vector3d LiverRestPoint(const Eigen::Vector3d& p_W) const;
   /// Where the liver's rest point q is now.
@@ -75,9 +91,13 @@ class DeformedCt {
   };
   Eigen::Vector3d LatticeDisplacement(const BlockLattice& lattice, const std::vector<Eigen::Vector3d>& u_prev,
                                       const std::vector<Eigen::Vector3d>& u_now, const Eigen::Vector3d& q) const;
+  /// q with q + u(q) = p; warm: the displacement near p to start from (updated to the one found).
   Eigen::Vector3d InvertLattice(const BlockLattice& lattice, const std::vector<Eigen::Vector3d>& u_prev,
-                                const std::vector<Eigen::Vector3d>& u_now, const Eigen::Vector3d& p) const;
-  void CaptureBlend(BodyState& out) const;
+                                const std::vector<Eigen::Vector3d>& u_now, const Eigen::Vector3d& p,
+                                bool* warm_valid = nullptr, Eigen::Vector3d* warm_u = nullptr) const;
+  /// Could the organ of this lattice be at p now (within its largest displacement)?
+  [[nodiscard]] bool MayBeNear(const BlockLattice& lattice, const std::vector<std::uint8_t>& reach,
+                               const Eigen::Vector3d& p) const;
 
   std::shared_ptr<const DeformedCtModel> model_;
   BodyState prev_, now_;

@@ -86,14 +86,15 @@ double NeedleHaptics::HounsfieldCrossed(const Eigen::Vector3d& entry, const Eige
   // the tip advances: sum |HU(k+1) - HU(k)|, the integral of |dHU/ds| on the sampled field.
   if (length_m <= 0.0) return 0.0;
   double crossed = 0.0;
-  double previous = ct_.Sample(entry).hu;
+  DeformedCt::SampleHint hint;  // neighbouring samples start each other's inversion
+  double previous = ct_.Sample(entry, &hint).hu;
   const int whole = static_cast<int>(std::floor(length_m / step_m_));
   for (int k = 1; k <= whole; ++k) {
-    const double hu = ct_.Sample(entry + (k * step_m_) * direction).hu;
+    const double hu = ct_.Sample(entry + (k * step_m_) * direction, &hint).hu;
     crossed += std::abs(hu - previous);
     previous = hu;
   }
-  if (length_m > whole * step_m_) crossed += std::abs(ct_.Sample(entry + length_m * direction).hu - previous);
+  if (length_m > whole * step_m_) crossed += std::abs(ct_.Sample(entry + length_m * direction, &hint).hu - previous);
   return crossed;
 }
 
