@@ -30,8 +30,9 @@ SessionStore& Checked(const std::unique_ptr<SessionStore>& store) {
   return *store;
 }
 
-const char* const kColumns[] = {"#",     "Started (UTC)", "Scenario",           "Duration",      "Success",
-                                "Slips", "Path (cm)",     "Liver damage (mm²)", "Max force (N)", "Tissue removed (%)"};
+const char* const kColumns[] = {"#",         "Started (UTC)",      "Procedure",     "Scenario",
+                                "Duration",  "Success",            "Slips",         "Path (cm)",
+                                "Liver damage (mm²)", "Max force (N)", "Tissue removed (%)"};
 constexpr int kColumnCount = static_cast<int>(std::size(kColumns));
 
 QString Text(const std::string& utf8) { return QString::fromStdString(utf8); }
@@ -114,7 +115,7 @@ void HistoryWindow::BuildUi() {
     if (!filling_choosers_ && index >= 0) LoadTrainee(trainees_->itemText(index));
   });
   connect(metrics_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int index) {
-    if (index >= 0) plot_->SetMetric(index);
+    if (index >= 0) PlotSessions();
   });
   connect(table_, &QTableWidget::itemSelectionChanged, this, [this] { ShowRow(table_->currentRow()); });
   connect(export_, &QPushButton::clicked, this, [this] { ExportWithDialog(); });
@@ -191,14 +192,9 @@ bool HistoryWindow::LoadTrainee(const QString& trainee_id) {
     SetStatus(QStringLiteral("Error: ") + Text(e.what()), true);
     return false;
   }
-  // A replay (or the demo) is not the trainee's own hands: listed, never a step of the curve.
-  std::vector<SessionMetrics> metrics;
-  metrics.reserve(sessions_.size());
-  for (const StoredSession& session : sessions_)
-    if (!session.record.replay) metrics.push_back(session.record.metrics);
-  const auto replays = sessions_.size() - metrics.size();
-  plot_->SetSessions(std::move(metrics));
-  plot_->SetEmptyText(QStringLiteral("No sessions of %1").arg(trainee_id));
+  const auto replays = std::count_if(sessions_.begin(), sessions_.end(),
+                                     [](const StoredSession& session) { return session.record.replay; });
+  PlotSessions();
   FillTable();
   export_->setEnabled(!sessions_.empty());
   QString status =
@@ -208,6 +204,21 @@ bool HistoryWindow::LoadTrainee(const QString& trainee_id) {
   return true;
 }
 
+void HistoryWindow::PlotSessions() {
+  const int index = std::max(0, metrics_->currentIndex());
+  const PlotMetric& metric = kPlotMetrics[index];
+  // A replay (or the demo) is not the trainee's own hands: listed, never a step of the curve.
+  std::vector<SessionMetrics> metrics;
+  for (const StoredSession& session : sessions_)
+    if (!session.record.replay && session.record.procedure == metric.procedure) metrics.push_back(session.record.metrics);
+  plot_->SetSessions(std::move(metrics));
+  plot_->SetMetric(index);
+  const QString trainee = CurrentTrainee();
+  plot_->SetEmptyText(trainee.isEmpty() ? QStringLiteral("No sessions recorded yet")
+                                        : QStringLiteral("No %1 sessions of %2")
+                                              .arg(QString::fromLatin1(ProcedureTitle(metric.procedure)).toLower(), trainee));
+}
+
 void HistoryWindow::FillTable() {
   const QSignalBlocker block(table_);
   table_->clearContents();
@@ -215,23 +226,26 @@ void HistoryWindow::FillTable() {
   for (int row = 0; row < static_cast<int>(sessions_.size()); ++row) {
     const SessionRecord& r = sessions_[row].record;
     const SessionMetrics& m = r.metrics;
+    const bool biopsy = r.procedure == Procedure::kNeedleBiopsy;
+    const QString none = QString::fromUtf8("–");  // a cholecystectomy measure of a biopsy
     const QString cells[kColumnCount] = {
         QString::number(row + 1),
         QDateTime::fromSecsSinceEpoch(r.started_unix_s, Qt::UTC).toString(QStringLiteral("yyyy-MM-dd HH:mm")),
+        QString::fromLatin1(ProcedureTitle(r.procedure)),
         Text(r.scenario),
         Text(FormatMinutesSeconds(m.duration_s)),
         r.replay       ? QStringLiteral("replay")
         : r.unfinished ? QStringLiteral("unfinished")
         : m.success    ? QStringLiteral("yes")
                        : QStringLiteral("no"),
-        QString::number(m.slips),
-        Text(FormatCentimetres(m.path_length_left_m + m.path_length_right_m)),
-        Text(FormatSquareMillimetres(m.liver_damage_m2)),
+        biopsy ? none : QString::number(m.slips),
+        biopsy ? none : Text(FormatCentimetres(m.path_length_left_m + m.path_length_right_m)),
+        biopsy ? none : Text(FormatSquareMillimetres(m.liver_damage_m2)),
         Text(FormatNewtons(m.max_force_N)),
-        Text(FormatPercent(m.tissue_removed_fraction))};
+        biopsy ? none : Text(FormatPercent(m.tissue_removed_fraction))};
     for (int column = 0; column < kColumnCount; ++column) {
       auto* item = new QTableWidgetItem(cells[column]);
-      if (column != 1 && column != 2) item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+      if (column < 1 || column > 3) item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
       table_->setItem(row, column, item);
     }
   }
@@ -250,7 +264,7 @@ void HistoryWindow::ShowRow(int row) {
     panel_->Clear();
     return;
   }
-  panel_->Show(sessions_[row].record.metrics);
+  panel_->Show(sessions_[row].record.metrics, sessions_[row].record.procedure);
 }
 
 bool HistoryWindow::ExportCsvTo(const QString& path) {

@@ -70,6 +70,8 @@ class HistoryWindow : public QWidget {
   void BuildUi();
   bool LoadTrainee(const QString& trainee_id);
   void FillTable();
+  // Gives the plot the trainee's own sessions (no replays) of the chosen metric's procedure.
+  void PlotSessions();
   void ShowRow(int row);
   void ExportWithDialog();
   void SetStatus(const QString& text, bool is_error);

@@ -34,6 +34,22 @@ std::string FormatNewtons(double newtons) { return Fixed(newtons, 2); }
 
 std::string FormatPercent(double fraction) { return Fixed(fraction * 100.0, 1); }
 
+std::string FormatMillimetres(double metres) { return Fixed(metres * 1e3, 1); }
+
+std::string FormatSpecimen(double sample_distance_m) {
+  if (!std::isfinite(sample_distance_m) || sample_distance_m < 0) return "-";
+  if (sample_distance_m < 0.005) return "necrotic debris";
+  if (sample_distance_m < 0.010) return "good specimen";
+  if (sample_distance_m < 0.015) return "some tumour cells";
+  return "not pathologic";
+}
+
+std::string FormatBiopsyOutcome(const SessionMetrics& metrics) {
+  const std::string verdict = metrics.success ? "yes" : "no";
+  if (!metrics.biopsy_sampled) return verdict + " (no sample)";
+  return verdict + " (" + FormatSpecimen(metrics.sample_distance_m) + ")";
+}
+
 std::string FormatOutcome(const SessionMetrics& metrics) {
   if (metrics.success) return "yes (gallbladder free, no perforation)";
   std::string reason;

@@ -26,6 +26,18 @@ std::string FormatNewtons(double newtons);
 /// A fraction 0..1 as a percentage with one decimal: 0.4567 -> "45.7".
 std::string FormatPercent(double fraction);
 
+/// A length in metres as millimetres with one decimal: 0.0072 -> "7.2".
+std::string FormatMillimetres(double metres);
+
+/// What a biopsy taken this far from the tumour's centre yields, by the seed paper's bands
+/// (section 6.3): < 5 mm "necrotic debris", 5-10 mm "good specimen", 10-15 mm "some tumour
+/// cells", > 15 mm "not pathologic". A band's lower bound belongs to it (5.0 mm is good).
+std::string FormatSpecimen(double sample_distance_m);
+
+/// A biopsy's outcome: "yes (good specimen)", "no (no sample)", "no (necrotic debris)", ...
+/// from metrics.success, biopsy_sampled and sample_distance_m.
+std::string FormatBiopsyOutcome(const SessionMetrics& metrics);
+
 /// "yes" or "no" (from metrics.success) with the reason in brackets:
 /// "yes (gallbladder free, no perforation)", "no (not free)", "no (perforated)",
 /// "no (not free, perforated)".

@@ -7,6 +7,7 @@
 #include <QWidget>
 #include <array>
 
+#include "app/records/procedure.h"
 #include "app/records/session_metrics.h"
 
 class QLabel;
@@ -19,12 +20,18 @@ inline constexpr std::array<const char*, 12> kMetricsPanelLabels{
     "metric_cautery_on", "metric_liver_damage",     "metric_gallbladder_damage", "metric_max_force",
     "metric_mean_force", "metric_tissue_removed",   "metric_springs_cut",        "metric_success"};
 
+/// The objectNames of the rows a needle biopsy adds (shown with duration, max and mean force and
+/// success; the cholecystectomy's own rows are hidden for a biopsy, and these for a cholecystectomy).
+inline constexpr std::array<const char*, 5> kBiopsyPanelLabels{"metric_time_to_sample", "metric_sample_distance",
+                                                               "metric_specimen", "metric_nogo_crossings",
+                                                               "metric_insertion_attempts"};
+
 class MetricsPanel : public QWidget {
  public:
   explicit MetricsPanel(QWidget* parent = nullptr);
 
-  /// Shows these metrics (replacing what was shown).
-  void Show(const SessionMetrics& metrics);
+  /// Shows these metrics (replacing what was shown), with the rows of that procedure.
+  void Show(const SessionMetrics& metrics, Procedure procedure = Procedure::kCholecystectomy);
 
   /// Back to the "–" placeholders.
   void Clear();
@@ -32,8 +39,16 @@ class MetricsPanel : public QWidget {
   /// The text of a value label by objectName; empty for an unknown name.
   QString ValueText(const QString& object_name) const;
 
+  /// Whether the row with this value objectName is shown (not hidden for the procedure).
+  bool RowShown(const QString& object_name) const;
+
  private:
+  void ShowRowsOf(Procedure procedure);
+
   std::array<QLabel*, kMetricsPanelLabels.size()> values_{};
+  std::array<QLabel*, kMetricsPanelLabels.size()> captions_{};
+  std::array<QLabel*, kBiopsyPanelLabels.size()> biopsy_values_{};
+  std::array<QLabel*, kBiopsyPanelLabels.size()> biopsy_captions_{};
 };
 
 }  // namespace vesica::app

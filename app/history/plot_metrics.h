@@ -1,13 +1,15 @@
 #pragma once
 // The metrics a learning curve can plot, each with its label, display unit and the factor from
 // the stored SI value to that unit. Booleans (free, perforation, success) are not plotted; the
-// session table shows them.
+// session table shows them. Each curve is made of one procedure's sessions (a biopsy's duration
+// is no step of a cholecystectomy's learning curve).
 
 #include <array>
 #include <string>
 #include <string_view>
 
 #include "app/records/metric_fields.h"
+#include "app/records/procedure.h"
 
 namespace vesica::app {
 
@@ -17,9 +19,10 @@ struct PlotMetric {
   const char* unit;     // display unit, UTF-8 ("mm²"); empty for counts
   double scale;         // display value = stored SI value * scale
   MetricMember member;  // the SessionMetrics field
+  Procedure procedure = Procedure::kCholecystectomy;  // whose sessions the curve is made of
 };
 
-inline constexpr std::array<PlotMetric, 11> kPlotMetrics{{
+inline constexpr std::array<PlotMetric, 15> kPlotMetrics{{
     {"duration_s", "Duration", "s", 1.0, &SessionMetrics::duration_s},
     {"path_length_left_m", "Path length, grasper", "cm", 100.0, &SessionMetrics::path_length_left_m},
     {"path_length_right_m", "Path length, hook", "cm", 100.0, &SessionMetrics::path_length_right_m},
@@ -31,6 +34,13 @@ inline constexpr std::array<PlotMetric, 11> kPlotMetrics{{
     {"mean_force_N", "Mean force", "N", 1.0, &SessionMetrics::mean_force_N},
     {"tissue_removed_fraction", "Tissue removed", "%", 100.0, &SessionMetrics::tissue_removed_fraction},
     {"springs_cut", "Springs cut", "", 1.0, &SessionMetrics::springs_cut},
+    {"time_to_sample_s", "Biopsy: time to sample", "s", 1.0, &SessionMetrics::time_to_sample_s,
+     Procedure::kNeedleBiopsy},
+    {"sample_distance_m", "Biopsy: sample to tumour centre", "mm", 1e3, &SessionMetrics::sample_distance_m,
+     Procedure::kNeedleBiopsy},
+    {"nogo_crossings", "Biopsy: no-go crossings", "", 1.0, &SessionMetrics::nogo_crossings, Procedure::kNeedleBiopsy},
+    {"insertion_attempts", "Biopsy: insertion attempts", "", 1.0, &SessionMetrics::insertion_attempts,
+     Procedure::kNeedleBiopsy},
 }};
 
 /// The metric's value for one session in its display unit: stored value * metric.scale.

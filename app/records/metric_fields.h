@@ -15,9 +15,10 @@ using MetricMember = std::variant<double SessionMetrics::*, int SessionMetrics::
 struct MetricField {
   const char* name;  // column name in SQL and CSV
   MetricMember member;
+  int since_schema = 1;  // the session schema version that added the column (older stores read 0)
 };
 
-inline constexpr std::array<MetricField, 15> kMetricFields{{
+inline constexpr std::array<MetricField, 20> kMetricFields{{
     {"duration_s", &SessionMetrics::duration_s},
     {"path_length_left_m", &SessionMetrics::path_length_left_m},
     {"path_length_right_m", &SessionMetrics::path_length_right_m},
@@ -33,6 +34,11 @@ inline constexpr std::array<MetricField, 15> kMetricFields{{
     {"gallbladder_free", &SessionMetrics::gallbladder_free},
     {"perforation", &SessionMetrics::perforation},
     {"success", &SessionMetrics::success},
+    {"biopsy_sampled", &SessionMetrics::biopsy_sampled, 3},
+    {"time_to_sample_s", &SessionMetrics::time_to_sample_s, 3},
+    {"sample_distance_m", &SessionMetrics::sample_distance_m, 3},
+    {"nogo_crossings", &SessionMetrics::nogo_crossings, 3},
+    {"insertion_attempts", &SessionMetrics::insertion_attempts, 3},
 }};
 
 /// Field-by-field equality (exact, doubles included: the stores round-trip doubles bit for bit).

@@ -35,6 +35,11 @@ inline constexpr std::array<MetricDisplayUnit, kMetricFields.size()> kMetricDisp
     {"gallbladder_free", "gallbladder_free", "", 1.0},
     {"perforation", "perforation", "", 1.0},
     {"success", "success", "", 1.0},
+    {"biopsy_sampled", "biopsy_sampled", "", 1.0},
+    {"time_to_sample_s", "time_to_sample_s", "s", 1.0},
+    {"sample_distance_m", "sample_distance_mm", "mm", 1e3},
+    {"nogo_crossings", "nogo_crossings", "", 1.0},
+    {"insertion_attempts", "insertion_attempts", "", 1.0},
 }};
 
 consteval bool DisplayUnitsFollowMetricFields() {

@@ -12,6 +12,9 @@
 #include <sstream>
 #include <type_traits>
 #include <variant>
+#include <set>
+#include <array>
+#include <algorithm>
 
 #include "app/records/csv_text.h"
 #include "app/records/default_location.h"
@@ -20,22 +23,26 @@
 namespace vesica::app {
 namespace {
 
-constexpr int kHeadFields = 9;  // trainee_id ... physics_lag_s
+// The columns before the metrics, in the order this build writes them.
+constexpr std::array<const char*, 10> kHeadColumns{"trainee_id",   "scenario",   "station",       "started_unix_s",
+                                                   "ended_unix_s", "input_recording_path", "replay", "unfinished",
+                                                   "physics_lag_s", "procedure"};
 
 std::string Header() {
-  std::string header =
-      "trainee_id,scenario,station,started_unix_s,ended_unix_s,input_recording_path,replay,unfinished,physics_lag_s";
+  std::string header;
+  for (const char* column : kHeadColumns) {
+    if (!header.empty()) header += ',';
+    header += column;
+  }
   for (const auto& field : kMetricFields) header += std::string(",") + field.name;
   return header + "\n";
 }
-
-
 
 std::string Row(const SessionRecord& r) {
   std::string row = CsvField(r.trainee_id) + "," + CsvField(r.scenario) + "," + CsvField(r.station) + "," +
                     std::to_string(r.started_unix_s) + "," + std::to_string(r.ended_unix_s) + "," +
                     CsvField(r.input_recording_path) + "," + (r.replay ? "1" : "0") + "," + (r.unfinished ? "1" : "0") +
-                    "," + ShortestDoubleText(r.physics_lag_s);
+                    "," + ShortestDoubleText(r.physics_lag_s) + "," + ProcedureKey(r.procedure);
   for (const auto& field : kMetricFields) {
     row += ",";
     std::visit(
@@ -105,34 +112,64 @@ bool Flag(const std::string& text, const std::string& where, const char* name) {
   return text == "1";
 }
 
-SessionRecord ParseRow(const std::vector<std::string>& f, const std::string& where) {
-  const std::size_t expected = kHeadFields + kMetricFields.size();
-  if (f.size() != expected)
-    throw RecordsError(where + ": " + std::to_string(f.size()) + " fields, expected " + std::to_string(expected));
+// A row read by the names in the file's own header: a file an older build left (fewer columns,
+// schema 2) reads with the missing ones at their defaults; an unknown or repeated column is an error.
+SessionRecord ParseRow(const std::vector<std::string>& header, const std::vector<std::string>& f,
+                       const std::string& where) {
+  if (f.size() != header.size())
+    throw RecordsError(where + ": " + std::to_string(f.size()) + " fields, expected " + std::to_string(header.size()));
   SessionRecord r;
-  r.trainee_id = f[0];
-  r.scenario = f[1];
-  r.station = f[2];
-  r.started_unix_s = Number<std::int64_t>(f[3], where, "started_unix_s");
-  r.ended_unix_s = Number<std::int64_t>(f[4], where, "ended_unix_s");
-  r.input_recording_path = f[5];
-  r.replay = Flag(f[6], where, "replay");
-  r.unfinished = Flag(f[7], where, "unfinished");
-  r.physics_lag_s = Number<double>(f[8], where, "physics_lag_s");
-  std::size_t i = kHeadFields;
-  for (const auto& field : kMetricFields) {
-    std::visit(
-        [&](auto member) {
-          using T = std::remove_cvref_t<decltype(r.metrics.*member)>;
-          if constexpr (std::is_same_v<T, bool>)
-            r.metrics.*member = Flag(f[i], where, field.name);
-          else
-            r.metrics.*member = Number<T>(f[i], where, field.name);
-        },
-        field.member);
-    ++i;
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    const std::string& name = header[i];
+    const std::string& text = f[i];
+    if (name == "trainee_id") {
+      r.trainee_id = text;
+    } else if (name == "scenario") {
+      r.scenario = text;
+    } else if (name == "station") {
+      r.station = text;
+    } else if (name == "started_unix_s") {
+      r.started_unix_s = Number<std::int64_t>(text, where, "started_unix_s");
+    } else if (name == "ended_unix_s") {
+      r.ended_unix_s = Number<std::int64_t>(text, where, "ended_unix_s");
+    } else if (name == "input_recording_path") {
+      r.input_recording_path = text;
+    } else if (name == "replay") {
+      r.replay = Flag(text, where, "replay");
+    } else if (name == "unfinished") {
+      r.unfinished = Flag(text, where, "unfinished");
+    } else if (name == "physics_lag_s") {
+      r.physics_lag_s = Number<double>(text, where, "physics_lag_s");
+    } else if (name == "procedure") {
+      const auto procedure = ParseProcedure(text);
+      if (!procedure) throw RecordsError(where + ": procedure: unknown procedure '" + text + "'");
+      r.procedure = *procedure;
+    } else {
+      const auto field = std::find_if(kMetricFields.begin(), kMetricFields.end(),
+                                      [&](const MetricField& candidate) { return name == candidate.name; });
+      if (field == kMetricFields.end()) throw RecordsError(where + ": unknown column '" + name + "'");
+      std::visit(
+          [&](auto member) {
+            using T = std::remove_cvref_t<decltype(r.metrics.*member)>;
+            if constexpr (std::is_same_v<T, bool>)
+              r.metrics.*member = Flag(text, where, field->name);
+            else
+              r.metrics.*member = Number<T>(text, where, field->name);
+          },
+          field->member);
+    }
   }
   return r;
+}
+
+// The header row's columns, checked: every one known, none twice, trainee_id first.
+std::vector<std::string> ParseHeader(const std::vector<std::string>& header, const std::string& where) {
+  if (header.empty() || header[0] != "trainee_id") throw RecordsError(where + ": no header row");
+  std::set<std::string> seen;
+  for (const std::string& name : header) {
+    if (!seen.insert(name).second) throw RecordsError(where + ": column '" + name + "' appears twice");
+  }
+  return header;
 }
 
 [[noreturn]] void Fail(const std::filesystem::path& path, const std::string& what) {
@@ -156,7 +193,33 @@ void ReplaceFile(const std::filesystem::path& path, const std::string& text) {
   }
 }
 
+std::string FirstLine(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
 }  // namespace
+
+// A file an older build left has other columns: its sessions are rewritten in this build's
+// columns before a row is appended, so that every row of the file follows its header. A file
+// that does not read is moved aside (kept for a person to look at), never overwritten.
+void RewriteInThisBuildsColumns(const std::filesystem::path& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error) || std::filesystem::file_size(path, error) == 0) return;
+  const std::string header = Header();
+  if (FirstLine(path) + "\n" == header) return;
+  std::string text = header;
+  try {
+    for (const SessionRecord& old : ReadPendingSessions(path)) text += Row(old);
+  } catch (const RecordsError&) {
+    const std::filesystem::path aside = path.string() + ".unreadable";
+    if (std::rename(path.c_str(), aside.c_str()) != 0) Fail(path, "cannot move the unreadable file aside");
+    return;
+  }
+  ReplaceFile(path, text);
+}
 
 std::filesystem::path PendingSessionsPath(const std::string& location) {
   if (IsConnectionString(location)) {
@@ -173,6 +236,7 @@ void KeepPendingSession(const std::filesystem::path& path, const SessionRecord& 
     errno = error.value();
     Fail(path, "cannot create its folder");
   }
+  RewriteInThisBuildsColumns(path);
   const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (fd < 0) Fail(path, "cannot open");
   // A row cut short by a kill was never promised: cut it off so this one starts on its own line.
@@ -203,13 +267,14 @@ std::vector<SessionRecord> ReadPendingSessions(const std::filesystem::path& path
   text << in.rdbuf();
   std::vector<SessionRecord> records;
   const auto rows = ParseCsv(text.str());
+  std::vector<std::string> header;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const std::string where = "pending sessions file " + path.string() + ":" + std::to_string(rows[i].first);
     if (i == 0) {
-      if (rows[i].second.empty() || rows[i].second[0] != "trainee_id") throw RecordsError(where + ": no header row");
+      header = ParseHeader(rows[i].second, where);
       continue;
     }
-    records.push_back(ParseRow(rows[i].second, where));
+    records.push_back(ParseRow(header, rows[i].second, where));
   }
   return records;
 }

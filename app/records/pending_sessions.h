@@ -3,8 +3,10 @@
 // a database that is locked, corrupt, on a full disk or on a server that is down never costs a
 // finished session. The file is CSV (RFC 4180), a header row then one session a row:
 //   trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path, replay,
-//   unfinished, physics_lag_s, then every SessionMetrics field (kMetricFields order);
-// doubles in shortest round-trip form (bit-exact), bools 1/0.
+//   unfinished, physics_lag_s, procedure, then every SessionMetrics field (kMetricFields order);
+// doubles in shortest round-trip form (bit-exact), bools 1/0. Rows are read by the header's
+// column names, so a file an older build left (without procedure and the biopsy metrics) reads
+// with those at their defaults.
 
 #include <filesystem>
 #include <string>
@@ -22,6 +24,10 @@ std::filesystem::path PendingSessionsPath(const std::string& location);
 /// Appends `record` (creating the file, its folder and header), flushed to disk before it
 /// returns. Throws RecordsError naming the file and the system's reason.
 void KeepPendingSession(const std::filesystem::path& path, const SessionRecord& record);
+
+/// Rewrites a pending file that an older build left in this build's columns (a file that does not
+/// read is renamed to "<path>.unreadable" instead). KeepPendingSession calls it before appending.
+void RewriteInThisBuildsColumns(const std::filesystem::path& path);
 
 /// The sessions waiting in `path`, oldest first; none when there is no file. Throws RecordsError
 /// naming the file and line of a row that does not read.

@@ -121,6 +121,9 @@ StoredSession ReadSessionRow(const PGresult* result, int row, const detail::PgCo
   r.replay = text(7)[0] == 't';
   r.unfinished = text(8)[0] == 't';
   r.physics_lag_s = ParseNumber<double>(text(9), pg, step);
+  const auto procedure = ParseProcedure(text(10));
+  if (!procedure) pg.Fail(step, std::string("unknown procedure '") + text(10) + "' in session " + text(0));
+  r.procedure = *procedure;
   int column = kSessionHeadColumns;
   for (const auto& field : kMetricFields) {
     std::visit(
@@ -147,7 +150,8 @@ std::string DoubleText(double value) {
 std::vector<std::string> SessionParams(const SessionRecord& r) {
   std::vector<std::string> params{
       r.trainee_id,          r.scenario, r.station, std::to_string(r.started_unix_s), std::to_string(r.ended_unix_s),
-      r.input_recording_path, r.replay ? "true" : "false", r.unfinished ? "true" : "false", DoubleText(r.physics_lag_s)};
+      r.input_recording_path, r.replay ? "true" : "false", r.unfinished ? "true" : "false", DoubleText(r.physics_lag_s),
+      ProcedureKey(r.procedure)};
   for (const auto& field : kMetricFields) {
     std::visit(
         [&](auto member) {
@@ -219,8 +223,13 @@ PostgresSessionStore::PostgresSessionStore(const std::string& connection_string)
     }
     if (version == 1) {
       for (const auto& sql : MigrateSchemaV1ToV2Sql(SqlDialect::kPostgres)) pg_->Exec(sql, {}, step);
-      pg_->Exec("INSERT INTO vesica_schema (version) VALUES ($1)", {std::to_string(kSessionSchemaVersion)}, step);
+      version = 2;
     }
+    if (version == 2) {
+      for (const auto& sql : MigrateSchemaV2ToV3Sql(SqlDialect::kPostgres)) pg_->Exec(sql, {}, step);
+    }
+    pg_->Exec("DELETE FROM vesica_schema", {}, step);
+    pg_->Exec("INSERT INTO vesica_schema (version) VALUES ($1)", {std::to_string(kSessionSchemaVersion)}, step);
     transaction.Commit(step);
   }
 }
@@ -243,7 +252,7 @@ std::vector<StoredSession> PostgresSessionStore::List(const std::string& trainee
   const std::string step = "list sessions of trainee '" + trainee_id + "'";
   pg_->EnsureConnected(step);
   const Result result =
-      pg_->Exec("SELECT " + SessionSelectColumns() + " FROM sessions WHERE trainee_id = $1 ORDER BY started_unix_s, id",
+      pg_->Exec("SELECT " + SessionSelectColumns(kSessionSchemaVersion) + " FROM sessions WHERE trainee_id = $1 ORDER BY started_unix_s, id",
                 {trainee_id}, step);
   std::vector<StoredSession> sessions;
   for (int row = 0; row < PQntuples(result.get()); ++row) {
@@ -256,7 +265,7 @@ std::optional<StoredSession> PostgresSessionStore::Get(std::int64_t id) {
   const std::string step = "get session " + std::to_string(id);
   pg_->EnsureConnected(step);
   const Result result =
-      pg_->Exec("SELECT " + SessionSelectColumns() + " FROM sessions WHERE id = $1", {std::to_string(id)}, step);
+      pg_->Exec("SELECT " + SessionSelectColumns(kSessionSchemaVersion) + " FROM sessions WHERE id = $1", {std::to_string(id)}, step);
   if (PQntuples(result.get()) == 0) return std::nullopt;
   return ReadSessionRow(result.get(), 0, *pg_, step);
 }

@@ -20,14 +20,16 @@ using vesica::app::StoredSession;
 // The units are those of the trainer and the CSV export (metric_units.h), named in the header.
 void PrintSessions(const std::vector<StoredSession>& sessions) {
   std::cout << std::left << std::setw(8) << "id" << std::setw(16) << "trainee" << std::setw(22) << "started (UTC)"
-            << std::setw(14) << "duration (s)" << std::setw(12) << "success" << "scenario\n";
+            << std::setw(14) << "duration (s)" << std::setw(12) << "success" << std::setw(17) << "procedure"
+            << "scenario\n";
   for (const auto& s : sessions) {
     const auto& r = s.record;
     // A replay is not the trainee's session, an unfinished one no result: neither reads as a success.
     const char* outcome = r.replay ? "replay" : r.unfinished ? "unfinished" : r.metrics.success ? "yes" : "no";
     std::cout << std::left << std::setw(8) << s.id << std::setw(16) << r.trainee_id << std::setw(22)
               << vesica::app::FormatUtcIso8601(r.started_unix_s) << std::setw(14) << std::fixed << std::setprecision(1)
-              << r.metrics.duration_s << std::setw(12) << outcome << r.scenario << '\n';
+              << r.metrics.duration_s << std::setw(12) << outcome << std::setw(17) << vesica::app::ProcedureKey(r.procedure)
+              << r.scenario << '\n';
   }
 }
 

@@ -31,7 +31,8 @@ std::string MetricText(const SessionMetrics& metrics, const MetricField& field, 
 
 std::vector<std::string> SessionCsvColumns() {
   std::vector<std::string> columns{"id",        "trainee_id",           "scenario", "station",    "started_utc",
-                                   "ended_utc", "input_recording_path", "replay",   "unfinished", "physics_lag_s"};
+                                   "ended_utc", "input_recording_path", "replay",   "unfinished", "physics_lag_s",
+                                   "procedure"};
   for (const auto& unit : kMetricDisplayUnits) columns.emplace_back(unit.csv_column);
   return columns;
 }
@@ -45,7 +46,7 @@ void WriteSessionsCsv(const std::vector<StoredSession>& sessions, std::ostream& 
     out << session.id << ',' << CsvField(r.trainee_id) << ',' << CsvField(r.scenario) << ',' << CsvField(r.station)
         << ',' << FormatUtcIso8601(r.started_unix_s) << ',' << FormatUtcIso8601(r.ended_unix_s) << ','
         << CsvField(r.input_recording_path) << ',' << (r.replay ? 1 : 0) << ',' << (r.unfinished ? 1 : 0) << ','
-        << ShortestDoubleText(r.physics_lag_s);
+        << ShortestDoubleText(r.physics_lag_s) << ',' << ProcedureKey(r.procedure);
     for (std::size_t i = 0; i < kMetricFields.size(); ++i)
       out << ',' << MetricText(r.metrics, kMetricFields[i], kMetricDisplayUnits[i].scale);
     out << '\n';

@@ -21,6 +21,13 @@ struct SessionMetrics {
   bool gallbladder_free = false;
   bool perforation = false;  // gallbladder wall burnt through past threshold
   bool success = false;      // free and no perforation
+  // Needle biopsy (schema version 3; 0 for a cholecystectomy). The cholecystectomy fields above that
+  // apply to both keep their meaning: duration_s, max_force_N and mean_force_N (needle force).
+  bool biopsy_sampled = false;         // a sample was taken
+  double time_to_sample_s = 0;         // from the start of the session to the sample
+  double sample_distance_m = 0;        // sample site to the tumour's centre (when sampled)
+  int nogo_crossings = 0;              // entries of the needle into no-go tissue (lung, bone, ...)
+  int insertion_attempts = 0;          // skin entries, the first included
 };
 
 }  // namespace vesica::app

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/records/metric_fields.h"
+#include "app/records/procedure.h"
 #include "app/records/session_metrics.h"
 
 namespace vesica::app {
@@ -23,6 +24,8 @@ struct SessionRecord {
   bool unfinished = false;   // stored as it stood when the trainer quit (or was told to stop) mid-session
   double physics_lag_s = 0;  // how far the simulation fell behind the wall clock (>= 0): the trainee lived
                              // metrics.duration_s, the tissue only duration_s - physics_lag_s
+  // Schema version 3:
+  Procedure procedure = Procedure::kCholecystectomy;  // which operation; the metrics of the other are 0
 
   bool operator==(const SessionRecord&) const = default;
 };

@@ -49,6 +49,7 @@ std::vector<std::string> CreateSchemaV1Sql(SqlDialect dialect) {
       "  ended_unix_s BIGINT NOT NULL,\n"
       "  input_recording_path TEXT NOT NULL";
   for (const auto& field : kMetricFields) {
+    if (field.since_schema != 1) continue;
     sessions += ",\n  " + Quoted(field.name) + " " + MetricColumnType(field, dialect) + " NOT NULL";
   }
   sessions += "\n)";
@@ -70,10 +71,25 @@ std::vector<std::string> MigrateSchemaV1ToV2Sql(SqlDialect dialect) {
   };
 }
 
+std::vector<std::string> MigrateSchemaV2ToV3Sql(SqlDialect dialect) {
+  const bool pg = dialect == SqlDialect::kPostgres;
+  std::vector<std::string> statements{
+      "ALTER TABLE sessions ADD COLUMN procedure TEXT NOT NULL DEFAULT 'cholecystectomy' CHECK (procedure IN "
+      "('cholecystectomy', 'needle_biopsy'))"};
+  for (const auto& field : kMetricFields) {
+    if (field.since_schema != 3) continue;
+    const bool flag = std::holds_alternative<bool SessionMetrics::*>(field.member);
+    const std::string zero = flag && pg ? "FALSE" : "0";
+    statements.push_back("ALTER TABLE sessions ADD COLUMN " + Quoted(field.name) + " " +
+                         MetricColumnType(field, dialect) + " NOT NULL DEFAULT " + zero);
+  }
+  return statements;
+}
+
 std::string InsertSessionSql(SqlDialect dialect) {
   std::string columns =
       "trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path, replay, unfinished, "
-      "physics_lag_s";
+      "physics_lag_s, procedure";
   for (const auto& field : kMetricFields) columns += ", " + Quoted(field.name);
   std::string values;
   const int count = kSessionHeadColumns - 1 + static_cast<int>(kMetricFields.size());
@@ -88,7 +104,8 @@ std::string InsertTraineeSql(SqlDialect dialect) {
 std::string SessionSelectColumns(int schema_version) {
   std::string columns = "id, trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path, ";
   columns += schema_version >= 2 ? "replay, unfinished, physics_lag_s" : "0, 0, 0";
-  for (const auto& field : kMetricFields) columns += ", " + Quoted(field.name);
+  columns += schema_version >= 3 ? ", procedure" : ", 'cholecystectomy'";
+  for (const auto& field : kMetricFields) columns += ", " + (field.since_schema <= schema_version ? Quoted(field.name) : "0");
   return columns;
 }
 

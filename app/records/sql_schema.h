@@ -8,6 +8,8 @@
 //            input_recording_path, one column per SessionMetrics field)
 //   index sessions_by_trainee(trainee_id, started_unix_s, id)
 // Version 2 adds to sessions: replay, unfinished (booleans), physics_lag_s (double), default 0.
+// Version 3 adds to sessions: procedure (text, 'cholecystectomy' or 'needle_biopsy', default
+//   'cholecystectomy') and the needle-biopsy metrics (kMetricFields with since_schema 3), default 0.
 
 #include <string>
 #include <vector>
@@ -16,11 +18,15 @@ namespace vesica::app {
 
 enum class SqlDialect { kSqlite, kPostgres };
 
-/// Statements that create schema version 1 in an empty database (run in one transaction).
+/// Statements that create schema version 1 in an empty database (run in one transaction): the
+/// metric columns of kMetricFields with since_schema 1.
 std::vector<std::string> CreateSchemaV1Sql(SqlDialect dialect);
 
 /// Statements that turn schema version 1 into version 2 (run in one transaction).
 std::vector<std::string> MigrateSchemaV1ToV2Sql(SqlDialect dialect);
+
+/// Statements that turn schema version 2 into version 3 (run in one transaction).
+std::vector<std::string> MigrateSchemaV2ToV3Sql(SqlDialect dialect);
 
 /// INSERT INTO sessions (...) VALUES (...) with the parameters in SessionParameterOrder, and
 /// RETURNING id.
@@ -30,13 +36,13 @@ std::string InsertSessionSql(SqlDialect dialect);
 std::string InsertTraineeSql(SqlDialect dialect);
 
 /// "id, trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path,
-/// replay, unfinished, physics_lag_s, <metrics in kMetricFields order>" for SELECTs;
+/// replay, unfinished, physics_lag_s, procedure, <metrics in kMetricFields order>" for SELECTs;
 /// ReadSessionRow in each backend follows it.
 /// For a read-only store of an older `schema_version`, the missing columns read as their
-/// defaults (version 1: replay 0, unfinished 0, physics_lag_s 0).
-std::string SessionSelectColumns(int schema_version = 2);
+/// defaults (replay 0, unfinished 0, physics_lag_s 0, procedure 'cholecystectomy', metrics 0).
+std::string SessionSelectColumns(int schema_version);
 
-/// Number of leading non-metric columns in SessionSelectColumns (id ... physics_lag_s).
-inline constexpr int kSessionHeadColumns = 10;
+/// Number of leading non-metric columns in SessionSelectColumns (id ... procedure).
+inline constexpr int kSessionHeadColumns = 11;
 
 }  // namespace vesica::app

@@ -131,6 +131,8 @@ StoredSession ReadSessionRow(sqlite3_stmt* statement) {
   r.replay = sqlite3_column_int(statement, 7) != 0;
   r.unfinished = sqlite3_column_int(statement, 8) != 0;
   r.physics_lag_s = sqlite3_column_double(statement, 9);
+  // The CHECK constraint keeps anything else out of a store this build wrote.
+  r.procedure = ParseProcedure(ColumnText(statement, 10)).value_or(Procedure::kCholecystectomy);
   int column = kSessionHeadColumns;
   for (const auto& field : kMetricFields) {
     std::visit(
@@ -241,8 +243,12 @@ void SqliteSessionStore::OpenReadWrite() {
     }
     if (version == 1) {
       for (const auto& sql : MigrateSchemaV1ToV2Sql(SqlDialect::kSqlite)) db_->Exec(sql, step);
-      db_->Exec("PRAGMA user_version=" + std::to_string(kSessionSchemaVersion), step);
+      version = 2;
     }
+    if (version == 2) {
+      for (const auto& sql : MigrateSchemaV2ToV3Sql(SqlDialect::kSqlite)) db_->Exec(sql, step);
+    }
+    db_->Exec("PRAGMA user_version=" + std::to_string(kSessionSchemaVersion), step);
     transaction.Commit(step);
   }
   db_->schema_version = kSessionSchemaVersion;
@@ -272,6 +278,7 @@ std::int64_t SqliteSessionStore::Add(const SessionRecord& record) {
   db_->Check(sqlite3_bind_int(s, index++, record.replay ? 1 : 0), step);
   db_->Check(sqlite3_bind_int(s, index++, record.unfinished ? 1 : 0), step);
   db_->Check(sqlite3_bind_double(s, index++, record.physics_lag_s), step);
+  db_->Check(sqlite3_bind_text(s, index++, ProcedureKey(record.procedure), -1, SQLITE_STATIC), step);
   for (const auto& field : kMetricFields) {
     std::visit(
         [&](auto member) {

@@ -102,8 +102,8 @@ TEST_F(HistoryWindowTest, ChoosingAnotherTraineeReplotsAndRefillsTheTable) {
   EXPECT_EQ(window.CurrentTrainee(), "ben");
   EXPECT_EQ(PlottedY(window), (std::vector<double>{2, 9}));
   EXPECT_EQ(window.Table()->rowCount(), 2);
-  EXPECT_EQ(Cell(window, 0, 3), "20:00");
-  EXPECT_EQ(Cell(window, 1, 5), "9");
+  EXPECT_EQ(Cell(window, 0, 4), "20:00");
+  EXPECT_EQ(Cell(window, 1, 6), "9");
   EXPECT_EQ(window.StatusText().left(23), "2 session(s) of ben in ");
 
   ASSERT_TRUE(window.SelectTrainee("ana"));
@@ -119,19 +119,22 @@ TEST_F(HistoryWindowTest, TableRowsHoldTheSessionValues) {
   HistoryWindow window(*store_);
   QTableWidget* table = window.Table();
   ASSERT_EQ(table->rowCount(), 3);
-  ASSERT_EQ(table->columnCount(), 10);
+  ASSERT_EQ(table->columnCount(), 11);
   EXPECT_EQ(table->horizontalHeaderItem(1)->text(), "Started (UTC)");
-  EXPECT_EQ(table->horizontalHeaderItem(7)->text(), QString::fromUtf8("Liver damage (mm²)"));
-  const QStringList first = {
-      "1", "2026-11-23 03:20", "cholecystectomy-default", "15:00", "no", "7", "575.0", "40.0", "6.75", "62.5"};
-  const QStringList last = {
-      "3", "2026-11-25 03:20", "cholecystectomy-default", "08:01", "yes", "1", "275.0", "5.0", "4.25", "87.5"};
-  for (int column = 0; column < 10; ++column) {
+  EXPECT_EQ(table->horizontalHeaderItem(2)->text(), "Procedure");
+  EXPECT_EQ(table->horizontalHeaderItem(8)->text(), QString::fromUtf8("Liver damage (mm²)"));
+  const QStringList first = {"1",     "2026-11-23 03:20", "Cholecystectomy", "cholecystectomy-default",
+                             "15:00", "no",               "7",               "575.0",
+                             "40.0",  "6.75",             "62.5"};
+  const QStringList last = {"3",     "2026-11-25 03:20", "Cholecystectomy", "cholecystectomy-default",
+                            "08:01", "yes",              "1",               "275.0",
+                            "5.0",   "4.25",             "87.5"};
+  for (int column = 0; column < 11; ++column) {
     EXPECT_EQ(Cell(window, 0, column), first[column]) << "column " << column;
     EXPECT_EQ(Cell(window, 2, column), last[column]) << "column " << column;
   }
-  EXPECT_EQ(Cell(window, 1, 4), "no");
-  EXPECT_EQ(Cell(window, 1, 3), "12:00");
+  EXPECT_EQ(Cell(window, 1, 5), "no");
+  EXPECT_EQ(Cell(window, 1, 4), "12:00");
 }
 
 TEST_F(HistoryWindowTest, SelectedRowShowsInTheMetricsPanel) {
@@ -154,6 +157,52 @@ TEST_F(HistoryWindowTest, SelectedRowShowsInTheMetricsPanel) {
   EXPECT_EQ(window.SelectedSession()->ValueText("metric_success"), "no (perforated)");
 }
 
+TEST_F(HistoryWindowTest, BiopsiesAreListedBesideCholecystectomiesAndPlottedOnTheirOwnCurves) {
+  SessionRecord biopsy = AnaSessions()[2];
+  biopsy.procedure = Procedure::kNeedleBiopsy;
+  biopsy.scenario = "liver-biopsy";
+  biopsy.started_unix_s += 3600;
+  biopsy.ended_unix_s = biopsy.started_unix_s + 240;
+  biopsy.metrics = {};
+  biopsy.metrics.duration_s = 240;
+  biopsy.metrics.max_force_N = 3.5;
+  biopsy.metrics.success = true;
+  biopsy.metrics.biopsy_sampled = true;
+  biopsy.metrics.time_to_sample_s = 185;
+  biopsy.metrics.sample_distance_m = 0.0072;
+  biopsy.metrics.nogo_crossings = 1;
+  biopsy.metrics.insertion_attempts = 2;
+  store_->Add(biopsy);
+  HistoryWindow window(*store_);
+  ASSERT_EQ(window.Table()->rowCount(), 4);
+  EXPECT_EQ(Cell(window, 3, 2), "Needle biopsy");
+  EXPECT_EQ(Cell(window, 3, 3), "liver-biopsy");
+  EXPECT_EQ(Cell(window, 3, 4), "04:00");
+  EXPECT_EQ(Cell(window, 3, 6), QString::fromUtf8("–"));  // slips: no measure of a biopsy
+  EXPECT_EQ(Cell(window, 3, 9), "3.50");
+  // The newest (the biopsy) is selected: the panel shows the biopsy's rows, not the cholecystectomy's.
+  const MetricsPanel* panel = window.SelectedSession();
+  EXPECT_EQ(panel->ValueText("metric_success"), "yes (good specimen)");
+  EXPECT_EQ(panel->ValueText("metric_time_to_sample"), "03:05");
+  EXPECT_EQ(panel->ValueText("metric_sample_distance"), "7.2 mm");
+  EXPECT_EQ(panel->ValueText("metric_specimen"), "good specimen");
+  EXPECT_EQ(panel->ValueText("metric_nogo_crossings"), "1");
+  EXPECT_EQ(panel->ValueText("metric_insertion_attempts"), "2");
+  EXPECT_TRUE(panel->RowShown("metric_time_to_sample"));
+  EXPECT_FALSE(panel->RowShown("metric_slips"));
+  window.Table()->selectRow(0);
+  EXPECT_FALSE(panel->RowShown("metric_time_to_sample"));
+  EXPECT_TRUE(panel->RowShown("metric_slips"));
+  // The cholecystectomy's duration curve holds its three sessions only; the biopsy its own.
+  EXPECT_EQ(PlottedY(window), (std::vector<double>{900.0, 720.0, 480.5}));
+  ASSERT_TRUE(window.SelectMetric("time_to_sample_s"));
+  EXPECT_EQ(PlottedY(window), (std::vector<double>{185.0}));
+  ASSERT_TRUE(window.SelectMetric("sample_distance_m"));
+  EXPECT_DOUBLE_EQ(PlottedY(window).at(0), 7.2);
+  ASSERT_TRUE(window.SelectMetric("duration_s"));
+  EXPECT_EQ(PlottedY(window).size(), 3u);
+}
+
 TEST_F(HistoryWindowTest, ExportCsvToWritesTheTraineesRows) {
   HistoryWindow window(*store_);
   const QString path = Path("ana.csv");
@@ -166,7 +215,7 @@ TEST_F(HistoryWindowTest, ExportCsvToWritesTheTraineesRows) {
   ASSERT_EQ(lines.size(), 4);
   EXPECT_TRUE(
       lines[0].startsWith("id,trainee_id,scenario,station,started_utc,ended_utc,input_recording_path,"
-                          "replay,unfinished,physics_lag_s,duration_s,"));
+                          "replay,unfinished,physics_lag_s,procedure,duration_s,"));
   // Rows in start order; ana's were stored as ids 4, 1, 3.
   EXPECT_TRUE(lines[1].startsWith("4,ana,cholecystectomy-default,station-1,2026-11-23T03:20:00Z,"))
       << lines[1].toStdString();
@@ -174,9 +223,9 @@ TEST_F(HistoryWindowTest, ExportCsvToWritesTheTraineesRows) {
       << lines[2].toStdString();
   EXPECT_TRUE(
       lines[3].startsWith("3,ana,cholecystectomy-default,station-1,2026-11-25T03:20:00Z,"
-                          "2026-11-25T03:28:30Z,\"/recordings/ana, third.vrec\",0,0,0,480.5,150,125,1,60,"))
+                          "2026-11-25T03:28:30Z,\"/recordings/ana, third.vrec\",0,0,0,cholecystectomy,480.5,150,125,1,60,"))
       << lines[3].toStdString();
-  EXPECT_TRUE(lines[3].endsWith(",86,86,1,0,1"));
+  EXPECT_TRUE(lines[3].endsWith(",86,86,1,0,1,0,0,0,0,0"));
 
   ASSERT_TRUE(window.SelectTrainee("ben"));
   ASSERT_TRUE(window.ExportCsvTo(Path("ben.csv")));

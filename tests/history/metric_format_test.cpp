@@ -46,3 +46,33 @@ TEST(MetricFormatTest, OutcomeWithReason) {
 
 }  // namespace
 }  // namespace vesica::app
+
+namespace vesica::app {
+namespace {
+
+TEST(MetricFormatTest, SpecimenBandsOfTheSeedPaperWithTheirLowerBoundsInside) {
+  EXPECT_EQ(FormatSpecimen(0.0), "necrotic debris");
+  EXPECT_EQ(FormatSpecimen(0.0049), "necrotic debris");
+  EXPECT_EQ(FormatSpecimen(0.005), "good specimen");
+  EXPECT_EQ(FormatSpecimen(0.0099), "good specimen");
+  EXPECT_EQ(FormatSpecimen(0.010), "some tumour cells");
+  EXPECT_EQ(FormatSpecimen(0.0149), "some tumour cells");
+  EXPECT_EQ(FormatSpecimen(0.015), "not pathologic");
+  EXPECT_EQ(FormatSpecimen(0.2), "not pathologic");
+  EXPECT_EQ(FormatSpecimen(-1.0), "-");
+  EXPECT_EQ(FormatMillimetres(0.0072), "7.2");
+}
+
+TEST(MetricFormatTest, BiopsyOutcomeNamesTheSpecimenOrTheMissingSample) {
+  SessionMetrics m;
+  EXPECT_EQ(FormatBiopsyOutcome(m), "no (no sample)");
+  m.biopsy_sampled = true;
+  m.sample_distance_m = 0.003;
+  EXPECT_EQ(FormatBiopsyOutcome(m), "no (necrotic debris)");
+  m.sample_distance_m = 0.007;
+  m.success = true;
+  EXPECT_EQ(FormatBiopsyOutcome(m), "yes (good specimen)");
+}
+
+}  // namespace
+}  // namespace vesica::app

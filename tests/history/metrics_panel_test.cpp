@@ -71,8 +71,9 @@ TEST(MetricsPanelTest, EveryLabelNamedAndClearRestoresPlaceholders) {
   panel.Show(KnownMetrics());
   panel.Clear();
   for (const char* name : kMetricsPanelLabels) EXPECT_EQ(LabelText(panel, name), QString::fromUtf8("–")) << name;
+  for (const char* name : kBiopsyPanelLabels) EXPECT_EQ(LabelText(panel, name), QString::fromUtf8("–")) << name;
   EXPECT_EQ(panel.findChildren<QLabel*>(QRegularExpression("^metric_")).size(),
-            static_cast<int>(kMetricsPanelLabels.size()));
+            static_cast<int>(kMetricsPanelLabels.size() + kBiopsyPanelLabels.size()));
 }
 
 }  // namespace

@@ -79,5 +79,59 @@ TEST(PendingSessionsTest, RowCutShortByAKillIsDroppedAndABadRowNamesItsLine) {
   }
 }
 
+// What a build before schema 3 wrote: no procedure column and none of the biopsy metrics.
+constexpr const char* kSchema2PendingFile =
+    "trainee_id,scenario,station,started_unix_s,ended_unix_s,input_recording_path,replay,unfinished,physics_lag_s,"
+    "duration_s,path_length_left_m,path_length_right_m,slips,cautery_on_s,liver_damage_m2,gallbladder_damage_m2,"
+    "max_force_N,mean_force_N,tissue_removed_fraction,springs_cut,springs_total,gallbladder_free,perforation,success\n"
+    "ana,cholecystectomy,station-1,1795406400,1795406700,,0,1,0.5,300.5,1.25,0.5,2,40,1e-05,0,4.5,0.75,1,210,210,1,0,"
+    "1\n";
+
+TEST(PendingSessionsTest, AFileAnOlderBuildLeftReadsAndTakesNewSessionsInItsNewColumns) {
+  TempDir dir;
+  const auto path = dir.path() / "p.csv";
+  std::ofstream(path) << kSchema2PendingFile;
+  SessionRecord old;
+  old.trainee_id = "ana";
+  old.scenario = "cholecystectomy";
+  old.station = "station-1";
+  old.started_unix_s = 1795406400;
+  old.ended_unix_s = 1795406700;
+  old.unfinished = true;
+  old.physics_lag_s = 0.5;
+  old.metrics = {.duration_s = 300.5, .path_length_left_m = 1.25, .path_length_right_m = 0.5, .slips = 2,
+                 .cautery_on_s = 40, .liver_damage_m2 = 1e-5, .gallbladder_damage_m2 = 0, .max_force_N = 4.5,
+                 .mean_force_N = 0.75, .tissue_removed_fraction = 1, .springs_cut = 210, .springs_total = 210,
+                 .gallbladder_free = true, .perforation = false, .success = true};
+  EXPECT_EQ(ReadPendingSessions(path), std::vector<SessionRecord>{old});
+  // A biopsy kept after it: the file is rewritten in this build's columns, nothing lost.
+  const SessionRecord biopsy = SampleRecord(2);
+  ASSERT_EQ(biopsy.procedure, Procedure::kNeedleBiopsy);
+  KeepPendingSession(path, biopsy);
+  EXPECT_EQ(ReadPendingSessions(path), (std::vector<SessionRecord>{old, biopsy}));
+  std::ifstream in(path);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_THAT(header, HasSubstr(",physics_lag_s,procedure,duration_s,"));
+}
+
+TEST(PendingSessionsTest, AnUnknownColumnOrAProcedureNamesItsLine) {
+  TempDir dir;
+  const auto path = dir.path() / "p.csv";
+  KeepPendingSession(path, SampleRecord(0));
+  std::stringstream text;
+  text << std::ifstream(path).rdbuf();
+  std::string with_bad_procedure = text.str() + text.str().substr(text.str().find('\n') + 1);
+  const auto at = with_bad_procedure.rfind(",cholecystectomy,");
+  ASSERT_NE(at, std::string::npos);
+  with_bad_procedure.replace(at, 17, ",appendectomy,");
+  std::ofstream(path) << with_bad_procedure;
+  EXPECT_THAT([&] { ReadPendingSessions(path); },
+              ::testing::ThrowsMessage<RecordsError>(HasSubstr(":3: procedure: unknown procedure 'appendectomy'")));
+  std::ofstream(path) << "trainee_id,colour\nana,red\n";
+  EXPECT_THAT([&] { ReadPendingSessions(path); },
+              ::testing::ThrowsMessage<RecordsError>(HasSubstr(":2: unknown column 'colour'")));
+}
+
 }  // namespace
 }  // namespace vesica::app

@@ -30,6 +30,16 @@ SessionRecord SampleRecord(int index, const std::string& trainee_id) {
   m.gallbladder_free = index % 2 == 0;
   m.perforation = index % 3 == 1;
   m.success = m.gallbladder_free && !m.perforation;
+  // Every third a needle biopsy, so each store and file round-trips both procedures' columns.
+  if (index % 3 == 2) {
+    r.procedure = Procedure::kNeedleBiopsy;
+    r.scenario = "needle-biopsy-" + std::to_string(index % 2);
+  }
+  m.biopsy_sampled = index % 2 == 0;
+  m.time_to_sample_s = 95.5 + x / 7.0;
+  m.sample_distance_m = 0.0035 * x + 1e-9;
+  m.nogo_crossings = index % 4;
+  m.insertion_attempts = 1 + index;
   return r;
 }
 

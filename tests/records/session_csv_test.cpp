@@ -28,7 +28,7 @@ using testing::TempDir;
 // back bit for bit.
 void ExpectRowIs(const std::vector<std::string>& row, const StoredSession& session) {
   const auto& r = session.record;
-  ASSERT_EQ(row.size(), 10 + kMetricFields.size());
+  ASSERT_EQ(row.size(), 11 + kMetricFields.size());
   EXPECT_EQ(row[0], std::to_string(session.id));
   EXPECT_EQ(row[1], r.trainee_id);
   EXPECT_EQ(row[2], r.scenario);
@@ -39,7 +39,8 @@ void ExpectRowIs(const std::vector<std::string>& row, const StoredSession& sessi
   EXPECT_EQ(row[7], r.replay ? "1" : "0");
   EXPECT_EQ(row[8], r.unfinished ? "1" : "0");
   EXPECT_EQ(std::strtod(row[9].c_str(), nullptr), r.physics_lag_s);
-  std::size_t column = 10;
+  EXPECT_EQ(row[10], ProcedureKey(r.procedure));
+  std::size_t column = 11;
   for (const auto& field : kMetricFields) {
     const double scale = FindMetricDisplayUnit(field.name)->scale;
     const std::string& text = row[column++];
@@ -71,10 +72,11 @@ TEST(SessionCsvTest, HeaderIsFixedColumnsThenEveryMetricNamedWithItsDisplayUnit)
   // The units of the trainer's panel and history (s, cm, mm², N, %), not the stored SI metres.
   EXPECT_THAT(SessionCsvColumns(),
               ElementsAre("id", "trainee_id", "scenario", "station", "started_utc", "ended_utc", "input_recording_path",
-                          "replay", "unfinished", "physics_lag_s", "duration_s", "path_length_left_cm",
+                          "replay", "unfinished", "physics_lag_s", "procedure", "duration_s", "path_length_left_cm",
                           "path_length_right_cm", "slips", "cautery_on_s", "liver_damage_mm2", "gallbladder_damage_mm2",
                           "max_force_N", "mean_force_N", "tissue_removed_percent", "springs_cut", "springs_total",
-                          "gallbladder_free", "perforation", "success"));
+                          "gallbladder_free", "perforation", "success", "biopsy_sampled", "time_to_sample_s",
+                          "sample_distance_mm", "nogo_crossings", "insertion_attempts"));
 }
 
 TEST(SessionCsvTest, EmptyListIsHeaderOnly) {
@@ -101,10 +103,13 @@ TEST(SessionCsvTest, RowsReadBackToTheSameValuesIncludingAwkwardText) {
   }
   // A literal check of one plain row, so the format cannot drift unnoticed.
   EXPECT_EQ(rows[1][4], "2026-11-23T04:00:00Z");
-  EXPECT_EQ(rows[1][10], "300.0833333333333");  // duration_s = 299.75 + 1/3
-  EXPECT_EQ(rows[1][11], "14.285714285714285");  // path_length_left_cm = 100 / 7
-  EXPECT_EQ(rows[1][15], "15");                  // liver_damage_mm2 = 1.5e-5 m² x 1e6
-  EXPECT_EQ(rows[1][19], "50");                  // tissue_removed_percent = 1/2 x 100
+  EXPECT_EQ(rows[1][10], "cholecystectomy");
+  EXPECT_EQ(rows[3][10], "needle_biopsy");
+  EXPECT_EQ(rows[1][11], "300.0833333333333");  // duration_s = 299.75 + 1/3
+  EXPECT_EQ(rows[1][12], "14.285714285714285");  // path_length_left_cm = 100 / 7
+  EXPECT_EQ(rows[1][16], "15");                  // liver_damage_mm2 = 1.5e-5 m² x 1e6
+  EXPECT_EQ(rows[1][20], "50");                  // tissue_removed_percent = 1/2 x 100
+  EXPECT_EQ(rows[3][28], "10.500001");           // sample_distance_mm = (0.0035 x 3 + 1e-9) m x 1e3
 }
 
 TEST(SessionCsvTest, StoreExportIsTheTraineesSessionsInListOrder) {

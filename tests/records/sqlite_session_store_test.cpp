@@ -62,7 +62,7 @@ TEST(SqliteSessionStoreTest, SchemaVersion1IsMigratedKeepingItsSessions) {
   const auto path = dir.path() / "sessions.sqlite";
   WriteSchemaV1Database(path);
   SqliteSessionStore store(path);
-  EXPECT_EQ(store.SchemaVersion(), 2);
+  EXPECT_EQ(store.SchemaVersion(), kSessionSchemaVersion);
   const auto old = store.List("old");
   ASSERT_EQ(old.size(), 1u);
   EXPECT_EQ(old[0].record.metrics.duration_s, 300.5);
@@ -75,6 +75,77 @@ TEST(SqliteSessionStoreTest, SchemaVersion1IsMigratedKeepingItsSessions) {
   const auto id = store.Add(replay);
   EXPECT_EQ(store.Get(id)->record, replay);
   EXPECT_EQ(store.CheckIntegrity(), "ok");
+}
+
+// A version-2 database as a build before schema 3 left it: one session of trainee "old", a replay.
+void WriteSchemaV2Database(const std::filesystem::path& path) {
+  std::string sql = "BEGIN;";
+  for (const auto& statement : CreateSchemaV1Sql(SqlDialect::kSqlite)) sql += statement + ";";
+  for (const auto& statement : MigrateSchemaV1ToV2Sql(SqlDialect::kSqlite)) sql += statement + ";";
+  sql += "INSERT INTO trainees VALUES ('old');";
+  sql += "INSERT INTO sessions VALUES (1, 'old', 'cholecystectomy', 'station-1', 1795406400, 1795406700, '', "
+         "300.5, 1.25, 0.5, 2, 40, 1e-5, 0, 4.5, 0.75, 1, 210, 210, 1, 0, 1, 1, 0, 2.5);";
+  sql += "PRAGMA user_version=2; COMMIT;";
+  RawSql(path, sql);
+}
+
+TEST(SqliteSessionStoreTest, SchemaVersion2IsMigratedAsCholecystectomiesWithNoBiopsyMetrics) {
+  TempDir dir;
+  const auto path = dir.path() / "sessions.sqlite";
+  WriteSchemaV2Database(path);
+  SqliteSessionStore store(path);
+  EXPECT_EQ(store.SchemaVersion(), 3);
+  const auto old = store.List("old");
+  ASSERT_EQ(old.size(), 1u);
+  const SessionRecord& r = old[0].record;
+  EXPECT_EQ(r.procedure, Procedure::kCholecystectomy);
+  EXPECT_TRUE(r.replay);
+  EXPECT_EQ(r.physics_lag_s, 2.5);
+  EXPECT_EQ(r.metrics.max_force_N, 4.5);
+  EXPECT_FALSE(r.metrics.biopsy_sampled);
+  EXPECT_EQ(r.metrics.time_to_sample_s, 0.0);
+  EXPECT_EQ(r.metrics.insertion_attempts, 0);
+  // A biopsy goes in beside it and reads back whole.
+  SessionRecord biopsy = SampleRecord(2, "old");
+  ASSERT_EQ(biopsy.procedure, Procedure::kNeedleBiopsy);
+  const auto id = store.Add(biopsy);
+  EXPECT_EQ(store.Get(id)->record, biopsy);
+  EXPECT_EQ(store.CheckIntegrity(), "ok");
+}
+
+TEST(SqliteSessionStoreTest, AProcedureThisBuildDoesNotKnowIsRefusedByTheTable) {
+  TempDir dir;
+  const auto path = dir.path() / "sessions.sqlite";
+  { SqliteSessionStore store(path); }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  const int rc = sqlite3_exec(db,
+                              "INSERT INTO trainees VALUES ('x'); INSERT INTO sessions (trainee_id, scenario, station, "
+                              "started_unix_s, ended_unix_s, input_recording_path, procedure, duration_s, "
+                              "path_length_left_m, path_length_right_m, slips, cautery_on_s, liver_damage_m2, "
+                              "gallbladder_damage_m2, max_force_N, mean_force_N, tissue_removed_fraction, springs_cut, "
+                              "springs_total, gallbladder_free, perforation, success) VALUES ('x', 's', 't', 0, 0, '', "
+                              "'appendectomy', 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0)",
+                              nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  EXPECT_EQ(rc & 0xff, SQLITE_CONSTRAINT);
+}
+
+TEST(SqliteSessionStoreTest, ReadOnlyOpenOfVersion2ReadsItsSessionsAsCholecystectomies) {
+  TempDir dir;
+  const auto path = dir.path() / "sessions.sqlite";
+  WriteSchemaV2Database(path);
+  const std::string before = ReadBytes(path);
+  {
+    SqliteSessionStore store(path, StoreAccess::kReadOnly);
+    EXPECT_EQ(store.SchemaVersion(), 2);
+    const auto old = store.List("old");
+    ASSERT_EQ(old.size(), 1u);
+    EXPECT_EQ(old[0].record.procedure, Procedure::kCholecystectomy);
+    EXPECT_EQ(old[0].record.metrics.nogo_crossings, 0);
+    EXPECT_TRUE(old[0].record.metrics.success);
+  }
+  EXPECT_EQ(ReadBytes(path), before);
 }
 
 TEST(SqliteSessionStoreTest, ReadOnlyOpenChangesNothingInTheFile) {

@@ -518,7 +518,7 @@ TEST_F(TrainerGuiTest, ReplayIsStoredAsAReplayAndStaysOffTheLearningCurve) {
   HistoryWindow history(*store);
   ASSERT_TRUE(history.SelectTrainee("resident-25"));
   EXPECT_EQ(history.Table()->rowCount(), 2);
-  EXPECT_EQ(history.Table()->item(0, 4)->text(), "replay");
+  EXPECT_EQ(history.Table()->item(0, 5)->text(), "replay");
   EXPECT_EQ(history.Plot()->Points().size(), 1u);  // only the trainee's own session
   EXPECT_TRUE(history.StatusText().contains("1 replay(s) listed, not plotted")) << history.StatusText().toStdString();
 }
