@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <thread>
 #include <vector>
@@ -76,20 +77,21 @@ TEST_F(OmnisimProcessTest, KillNineIsALostLinkWithForceOffThenARestartRecovers) 
   ASSERT_TRUE(omnisim.Start(VESICA_OMNISIM_PATH, Args()));
   ASSERT_TRUE(TickUntil(DeviceStatus::kOk)) << stylus_->StatusText();
 
-  // Stream 400 cycles pushing the stylus +z with 1 N: the hand (300 N/m) yields 3.3 mm.
+  // Push the stylus +z with 1 N: the hand (300 N/m) yields 3.3 mm. On a loaded host the link may
+  // drop for a moment (force off, then back from zero): it has settled once it held within 10 %
+  // for 50 consecutive cycles.
   const Eigen::Vector3d push(0.0, 0.0, 1.0);
-  for (int i = 0; i < 400; ++i) {
-    stylus_->SetTipForce(push);  // refused while a loaded host drops the link for a moment
+  const double expected_z_m = 1.0 / 300.0;
+  int settled = 0;
+  for (int i = 0; i < 10000 && settled < 50; ++i) {
+    stylus_->SetTipForce(push);  // refused while the link is down
     Tick();
+    const bool near = std::abs(stylus_->GetStylusState().p_BTip_B.z() - expected_z_m) < 0.1 * expected_z_m;
+    settled = near && stylus_->Status() == DeviceStatus::kOk ? settled + 1 : 0;
   }
-  ASSERT_TRUE(TickUntil(DeviceStatus::kOk)) << stylus_->StatusText();
-  for (int i = 0; i < 200; ++i) {
-    stylus_->SetTipForce(push);
-    Tick();
-  }
-  EXPECT_NEAR(stylus_->GetStylusState().p_BTip_B.z(), 1.0 / 300.0, 0.15 / 300.0);
+  EXPECT_EQ(settled, 50) << "z = " << stylus_->GetStylusState().p_BTip_B.z() << " m";
   EXPECT_EQ(stylus_->GetStylusState().d_B, Eigen::Vector3d(0, 0, -1));
-  EXPECT_GT(stylus_->poses_received(), 500u);
+  EXPECT_GT(stylus_->poses_received(), 50u);
   EXPECT_EQ(stylus_->datagrams_rejected(), 0u) << stylus_->last_rejection();
 
   // kill -9 mid-stream (the link up at that moment), reaped, so nothing can arrive any more.
