@@ -12,10 +12,12 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <thread>
 #include <vector>
 
 #include "../device/armsim_process.h"
+#include "device/stylus/stylus_recording.h"
 #include "device/stylus/udp_stylus.h"
 
 namespace vesica::device {
@@ -41,12 +43,14 @@ class OmnisimProcessTest : public ::testing::Test {
     ASSERT_EQ(stylus_->Open(), DeviceStatus::kConnecting) << stylus_->StatusText();
   }
 
-  std::vector<std::string> Args(const std::string& hand = "hold") const {
-    return {"--port",      std::to_string(device_port_),
-            "--host-port", std::to_string(host_port_),
-            "--hand",      hand,
-            "--report",    "--log-level",
-            "warn"};
+  std::vector<std::string> Args(const std::string& hand = "hold", const std::string& file = "") const {
+    std::vector<std::string> args = {"--port",      std::to_string(device_port_),
+                                     "--host-port", std::to_string(host_port_),
+                                     "--report",    "--log-level",
+                                     "warn",        "--hand",
+                                     hand};
+    if (!file.empty()) args.push_back(file);
+    return args;
   }
 
   // One servo cycle at 1 kHz, its time recorded.
@@ -157,6 +161,33 @@ TEST_F(OmnisimProcessTest, BuiltInBiopsyStreamsTheScriptedHand) {
   omnisim.Kill(SIGTERM);
   std::string out;
   EXPECT_EQ(omnisim.Finish(&out), 0);
+}
+
+// --hand recording FILE plays a stylus recording: a still hand at a recorded pose is streamed
+// as that pose (no force: the spring rests on the target).
+TEST_F(OmnisimProcessTest, ARecordedHandIsStreamed) {
+  StylusRecording rec;
+  StylusSample a;
+  a.time_s = 0.0;
+  a.state.p_BTip_B = {0.02, -0.01, 0.005};
+  a.state.d_B = Eigen::Vector3d(0.0, -1.0, -1.0).normalized();
+  a.state.buttons = kStylusButton2;
+  StylusSample b = a;
+  b.time_s = 1.0;
+  rec.samples = {a, b};
+  const std::string file = ::testing::TempDir() + "omnisim_hand_" + std::to_string(device_port_) + ".csv";
+  WriteStylusRecording(file, rec);
+  testing::ArmsimProcess omnisim;
+  ASSERT_TRUE(omnisim.Start(VESICA_OMNISIM_PATH, Args("recording", file)));
+  ASSERT_TRUE(TickUntil(DeviceStatus::kOk)) << stylus_->StatusText();
+  const StylusState s = stylus_->GetStylusState();
+  EXPECT_LT((s.p_BTip_B - a.state.p_BTip_B).norm(), 1e-12);
+  EXPECT_LT((s.d_B - a.state.d_B).norm(), 1e-15);
+  EXPECT_EQ(s.buttons, kStylusButton2);
+  omnisim.Kill(SIGTERM);
+  std::string out;
+  EXPECT_EQ(omnisim.Finish(&out), 0);
+  std::remove(file.c_str());
 }
 
 TEST(OmnisimArgumentsTest, ABadRecordingIsRefusedNamingTheFile) {
