@@ -1,5 +1,7 @@
 #include "physics/registration/registration_solver.h"
 
+#include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,6 @@
 #include "physics/registration/surface_pairing.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
