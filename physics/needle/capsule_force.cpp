@@ -37,8 +37,12 @@ void ValidateCapsuleForceParameters(const CapsuleForceParameters& p) {
 }
 
 double CapsuleForce_N(const CapsuleForceParameters& p, double depth_m, bool punctured) {
-  if (punctured) return p.after.Force_N(depth_m);
-  return depth_m <= 0.0 ? 0.0 : p.before.Force_N(depth_m);
+  if (depth_m <= 0.0) return 0.0;
+  if (!punctured) return p.before.Force_N(depth_m);
+  if (depth_m >= p.puncture_depth_m) return p.after.Force_N(depth_m);
+  // Withdrawn (or breathed) back above the puncture depth: eq. 14 was measured advancing; here
+  // the force falls linearly to 0 at the capsule, so leaving the liver is felt without a jump.
+  return p.after.Force_N(p.puncture_depth_m) * depth_m / p.puncture_depth_m;
 }
 
 }  // namespace vesica::physics

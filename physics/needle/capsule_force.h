@@ -29,8 +29,10 @@ struct CapsuleForceParameters {
 /// Throws std::invalid_argument naming the field (finite values, puncture depth > 0).
 void ValidateCapsuleForceParameters(const CapsuleForceParameters& p);
 
-/// The capsule's force at depth d (m): before puncture eq. 14 with `before` (0 for d <= 0),
-/// punctured eq. 14 with `after`.
+/// The capsule's force at depth d (m): 0 for d <= 0; before puncture eq. 14 with `before`;
+/// punctured, eq. 14 with `after` from the puncture depth on, and below it (the needle drawn back,
+/// or the liver breathing up along it) a line from 0 at d = 0 to F_after(puncture depth), so that
+/// leaving the liver does not jump.
 [[nodiscard]] double CapsuleForce_N(const CapsuleForceParameters& p, double depth_m, bool punctured);
 
 }  // namespace vesica::physics

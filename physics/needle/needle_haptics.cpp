@@ -8,6 +8,8 @@
 namespace vesica::physics {
 namespace {
 
+constexpr double kGripFade_m = 0.002;
+
 double Smoothstep(double x) {
   x = std::clamp(x, 0.0, 1.0);
   return x * x * (3.0 - 2.0 * x);
@@ -167,7 +169,9 @@ const NeedleForces& NeedleHaptics::Update(const NeedlePose& pose, double now_s) 
       axial = std::copysign(p.grip_slip_force_N, axial);
       grip_stick_m_ = along - axial / p.grip_axial_stiffness_N_per_m;
     }
-    f.grip_N = axial * D + p.grip_lateral_stiffness_N_per_m * (r - along * D);
+    // The hole lets go as the tip draws back through it (over the last 2 mm): no jump on leaving.
+    f.grip_N =
+        Smoothstep(f.capsule_depth_m / kGripFade_m) * (axial * D + p.grip_lateral_stiffness_N_per_m * (r - along * D));
   }
 
   // Axial: the Hounsfield variation along the inserted needle, from the entry (P0 projected on the

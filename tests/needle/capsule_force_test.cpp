@@ -45,9 +45,13 @@ TEST(CapsuleForceTest, FigureElevenShape) {
     previous = f;
   }
   EXPECT_NEAR(CapsuleForce_N(p, 0.010, true), 0.6, 1e-12);  // the sharp drop
-  const double slope = (CapsuleForce_N(p, 0.010 + 1e-7, true) - CapsuleForce_N(p, 0.010 - 1e-7, true)) / 2e-7;
-  EXPECT_NEAR(slope, 12.0, 1e-5);
+  const double slope = (CapsuleForce_N(p, 0.010 + 1e-7, true) - CapsuleForce_N(p, 0.010, true)) / 1e-7;
+  EXPECT_NEAR(slope, 12.0, 1e-4);  // forward difference: eq. 14's slope there, 12 N/m
   EXPECT_GT(CapsuleForce_N(p, 0.040, true), CapsuleForce_N(p, 0.020, true));  // rising resistance
+  // Drawn back above the puncture depth: down to 0 at the capsule, linearly.
+  EXPECT_NEAR(CapsuleForce_N(p, 0.005, true), 0.3, 1e-12);
+  EXPECT_EQ(CapsuleForce_N(p, 0.0, true), 0.0);
+  EXPECT_EQ(CapsuleForce_N(p, -0.001, true), 0.0);
 }
 
 TEST(CapsuleForceTest, BadParametersAreRefusedByName) {

@@ -47,17 +47,25 @@ struct Tick {
   std::uint8_t label;
 };
 
-// Advances the needle from start along direction in steps of step_m up to length_m, one tick each.
-std::vector<Tick> Insert(NeedleHaptics& needle, const Eigen::Vector3d& start, const Eigen::Vector3d& direction,
-                         double length_m, double& t, double step_m = 0.0001) {
+// Moves the needle's tip from start along `motion` in steps of step_m up to length_m, one tick
+// each, the needle pointing along `pointing` (by default the way it moves: an insertion).
+std::vector<Tick> Insert(NeedleHaptics& needle, const Eigen::Vector3d& start, const Eigen::Vector3d& motion,
+                         double length_m, double& t, double step_m = 0.0001,
+                         const Eigen::Vector3d& pointing = Eigen::Vector3d::Zero()) {
+  const Eigen::Vector3d direction = pointing.isZero() ? motion : pointing;
   std::vector<Tick> ticks;
   const int n = static_cast<int>(std::lround(length_m / step_m));
   for (int k = 0; k <= n; ++k) {
-    const Eigen::Vector3d tip = start + (k * step_m) * direction;
+    const Eigen::Vector3d tip = start + (k * step_m) * motion;
     t += 0.001;
     ticks.push_back({k * step_m, needle.Update({tip, direction}, t), RestLabel(tip)});
   }
   return ticks;
+}
+// Draws the needle back (pointing along -motion).
+std::vector<Tick> Withdraw(NeedleHaptics& needle, const Eigen::Vector3d& start, const Eigen::Vector3d& pointing,
+                           double length_m, double& t, double step_m) {
+  return Insert(needle, start, -pointing, length_m, t, step_m, pointing);
 }
 
 // The first distance along the ticks where the rest label becomes l.
@@ -173,6 +181,23 @@ TEST(NeedleHapticsTest, CapsuleIsPushedVisiblyBeforePuncture) {
   EXPECT_FALSE(needle.capsule_push().active);
 }
 
+TEST(NeedleHapticsTest, WithdrawalIsContinuous) {
+  // Out from the tumour to outside the body in 0.05 mm steps: every plane is a ramp over a voxel,
+  // the liver lets go of the needle without a jump (the puncture's drop is felt going in only).
+  NeedleHaptics needle(Patient().ct);
+  double t = 0.0;
+  const Eigen::Vector3d D = needle_test::kAnteriorDirection;
+  const double length = (needle_test::TumourCentre() - needle_test::kAnteriorStart).norm();
+  Insert(needle, needle_test::kAnteriorStart, D, length, t, 0.0005);
+  ASSERT_EQ(needle.forces().capsule, CapsuleContact::kPunctured);
+  const std::vector<Tick> out = Withdraw(needle, needle_test::kAnteriorStart + length * D, D, length, t, 0.00005);
+  double largest = 0.0;
+  for (std::size_t k = 1; k < out.size(); ++k)
+    largest = std::max(largest, (out[k].f.total_N - out[k - 1].f.total_N).norm());
+  EXPECT_FALSE(out.back().f.inside);
+  EXPECT_LT(largest, 0.05);
+}
+
 TEST(NeedleHapticsTest, LateralForceGrowsWithDeviationOnceInsertedAndIsZeroOutside) {
   NeedleHaptics needle(Patient().ct);
   double t = 0.0;
@@ -283,11 +308,11 @@ TEST(NeedleHapticsTest, WithdrawalAndReentryIsASecondAttempt) {
   Insert(needle, needle_test::kAnteriorStart, D, 0.05, t, 0.0005);
   EXPECT_EQ(needle.metrics().insertion_attempts, 1);
   // Back a little, still inside, and on again: the same attempt.
-  Insert(needle, needle_test::kAnteriorStart + 0.05 * D, -D, 0.008, t, 0.0005);
+  Withdraw(needle, needle_test::kAnteriorStart + 0.05 * D, D, 0.008, t, 0.0005);
   Insert(needle, needle_test::kAnteriorStart + 0.042 * D, D, 0.008, t, 0.0005);
   EXPECT_EQ(needle.metrics().insertion_attempts, 1);
   // Out of the skin, then in again at a new angle.
-  Insert(needle, needle_test::kAnteriorStart + 0.05 * D, -D, 0.05, t, 0.0005);
+  Withdraw(needle, needle_test::kAnteriorStart + 0.05 * D, D, 0.05, t, 0.0005);
   EXPECT_FALSE(needle.forces().inside);
   EXPECT_EQ(needle.forces().total_N, Eigen::Vector3d::Zero());
   const Eigen::Vector3d tilted = Eigen::Vector3d(0.1, -1.0, 0.0).normalized();
@@ -339,6 +364,43 @@ TEST(NeedleHapticsTest, BreathingUnderTheNeedleIsFeltAndContinuousAcrossUpdates)
   RecordProperty("breath_force_range_N", std::to_string(hi - lo));
   RecordProperty("largest_tick_jump_N", std::to_string(largest_tick_jump));
   RecordProperty("largest_20ms_change_N", std::to_string(largest_period_change));
+}
+
+TEST(NeedleHapticsTest, BreathingAlongAShallowNeedleIsContinuous) {
+  // The needle just through the capsule (subcostal, so breathing moves the liver along it), held
+  // while the liver breathes: the capsule's depth goes back and forth through the puncture depth
+  // (where eq. 14 hands over to the withdrawal line) and the force follows without a jump.
+  BreathingPatient patient(Patient().model);
+  NeedleHaptics needle(Patient().ct);
+  double t = 0.0;
+  const Eigen::Vector3d D = (needle_test::TumourCentre() - needle_test::kSubcostalStart).normalized();
+  double s = 0.0;
+  while (needle.forces().capsule != CapsuleContact::kPunctured && s < 0.15)
+    needle.Update({needle_test::kSubcostalStart + (s += 0.0002) * D, D}, t += 0.001);
+  ASSERT_EQ(needle.forces().capsule, CapsuleContact::kPunctured);
+  s += 0.002;  // 12 mm past the capsule
+  const NeedlePose held{needle_test::kSubcostalStart + s * D, D};
+  needle.Update(held, t += 0.001);
+  const double depth0 = needle.forces().capsule_depth_m;
+  double largest_tick = 0.0, shallowest = 1.0, deepest = 0.0;
+  Eigen::Vector3d previous = needle.forces().total_N;
+  for (int tick = 1; tick <= 4000; ++tick) {
+    const double now = t + tick * 0.001;
+    if (tick % 20 == 0) {
+      patient.Update(tick * 0.001);
+      needle.SetPatient(patient.snapshot(), now);
+    }
+    const NeedleForces& f = needle.Update(held, now);
+    largest_tick = std::max(largest_tick, (f.total_N - previous).norm());
+    previous = f.total_N;
+    shallowest = std::min(shallowest, f.capsule == CapsuleContact::kNone ? 0.0 : f.capsule_depth_m);
+    deepest = std::max(deepest, f.capsule_depth_m);
+  }
+  EXPECT_LT(shallowest, 0.010) << depth0;  // the liver moved along the needle, both ways
+  EXPECT_GT(deepest, 0.010);
+  EXPECT_LT(largest_tick, 0.02);
+  RecordProperty("capsule_depth_range_mm", std::to_string(1e3 * shallowest) + " .. " + std::to_string(1e3 * deepest));
+  RecordProperty("largest_tick_jump_N", std::to_string(largest_tick));
 }
 
 TEST(NeedleHapticsTest, BadPosesAreRefusedAndChangeNothing) {

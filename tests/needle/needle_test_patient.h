@@ -34,6 +34,9 @@ inline Eigen::Vector3d TumourCentre() {
 // centres: air, skin, fat, intercostal muscle, capsule, liver, tumour.
 inline const Eigen::Vector3d kAnteriorStart(-0.075, 0.14, -0.045);
 inline const Eigen::Vector3d kAnteriorDirection(0.0, -1.0, 0.0);
+// Subcostal, from below the costal margin up (35 degrees) to the tumour's centre: air, skin, fat,
+// abdominal muscle, capsule, liver, tumour; breathing moves the liver along this needle.
+inline const Eigen::Vector3d kSubcostalStart(-0.075, 0.14, -0.13);
 // From the right flank at z = -60 mm towards the tumour: through rib 9 (bone), then the liver.
 inline const Eigen::Vector3d kRibStart(-0.20, 0.02, -0.06);
 // From the right flank at z = +60 mm, level: through skin, fat and muscle into the lung.
