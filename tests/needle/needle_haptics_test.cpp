@@ -110,6 +110,11 @@ TEST(NeedleHapticsTest, ScriptedInsertionStepsAtEachPlanePeaksAtTheCapsuleAndDro
   // Skin: up from air (-1000 to 30) and down to fat (-100): 1160 HU over one 2 mm voxel; sampled
   // every 1 mm the thin layer's peak may fall between samples.
   EXPECT_NEAR(axial(fat + h), kNPerHu * 1160.0, kNPerHu * 1160.0 * 0.15);
+  // Muscle, capsule, liver (felt once the capsule is perforated): 45 -> 75 -> 60, a thin layer
+  // like the skin.
+  EXPECT_NEAR(axial(tumour - 2 * h) - axial(capsule - h), kNPerHu * 45.0, kNPerHu * 45.0 * 0.15);
+  RecordProperty("capsule_plane_HU", std::to_string((axial(tumour - 2 * h) - axial(capsule - h)) / kNPerHu));
+  RecordProperty("skin_plane_HU", std::to_string(axial(fat + h) / kNPerHu));
   // Liver into tumour (after puncture): 60 -> 30.
   EXPECT_NEAR(axial(tumour + h) - axial(tumour - 2 * h), kNPerHu * 30.0, 1e-9);
 
