@@ -31,6 +31,8 @@ class HandScript {
   /// The intended stylus state t seconds after the start (t >= 0; loops over the recording).
   device::StylusState At(double t_s) const;
   double period_s() const { return period_s_; }
+  /// The recording it plays (directions unit).
+  const device::StylusRecording& Recording() const { return replay_.recording(); }
 
  private:
   device::ReplayStylus replay_;

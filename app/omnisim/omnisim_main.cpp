@@ -69,6 +69,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 99));
   app.add_flag("--report", report, "print counters and the final stylus state as one key=value line on stdout");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error");
+  std::string write_script;
+  app.add_option("--write-script", write_script,
+                 "write the hand's script (--hand) as a stylus recording to FILE and exit (docs/omni.md)");
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(log_level));
 
@@ -95,6 +98,17 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     spdlog::error("vesica-omnisim: {}", e.what());
     return 2;
+  }
+
+  if (!write_script.empty()) {
+    try {
+      dev::WriteStylusRecording(write_script, script->Recording());
+    } catch (const std::exception& e) {
+      spdlog::error("vesica-omnisim: {}", e.what());
+      return 2;
+    }
+    spdlog::info("vesica-omnisim: wrote the hand's script ({}) to {}", hand_text, write_script);
+    return 0;
   }
 
   std::string error;

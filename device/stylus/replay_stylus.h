@@ -36,6 +36,7 @@ class ReplayStylus final : public StylusDevice {
   double start_time_s() const { return recording_.samples.front().time_s; }
   double end_time_s() const { return recording_.samples.back().time_s; }
   bool finished(double time_s) const { return time_s > end_time_s(); }
+  const StylusRecording& recording() const { return recording_; }
 
  private:
   StylusRecording recording_;

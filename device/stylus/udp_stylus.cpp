@@ -52,6 +52,7 @@ void UdpStylus::Close() {
   }
   socket_.reset();
   requested_force_.setZero();
+  last_error_.clear();
 }
 
 DeviceStatus UdpStylus::StatusLocked() const {

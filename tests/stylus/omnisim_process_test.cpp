@@ -190,6 +190,22 @@ TEST_F(OmnisimProcessTest, ARecordedHandIsStreamed) {
   std::remove(file.c_str());
 }
 
+// --write-script writes the built-in biopsy as a stylus recording that reads back to the script.
+TEST(OmnisimArgumentsTest, WriteScriptGivesTheBuiltInBiopsy) {
+  const std::string file = ::testing::TempDir() + "omnisim_biopsy_script.csv";
+  testing::ArmsimProcess omnisim;
+  ASSERT_TRUE(omnisim.Start(VESICA_OMNISIM_PATH, {"--hand", "biopsy", "--write-script", file}));
+  std::string out;
+  ASSERT_EQ(omnisim.Finish(&out), 0);
+  const StylusRecording written = ReadStylusRecording(file);
+  ASSERT_EQ(written.samples.size(), 651u);
+  EXPECT_DOUBLE_EQ(written.samples.back().time_s, 6.5);
+  int pressed = 0;
+  for (const StylusSample& s : written.samples) pressed += (s.state.buttons & kStylusButton1) != 0;
+  EXPECT_EQ(pressed, 20);  // 3.4 s .. 3.6 s at 10 ms
+  std::remove(file.c_str());
+}
+
 TEST(OmnisimArgumentsTest, ABadRecordingIsRefusedNamingTheFile) {
   testing::ArmsimProcess omnisim;
   ASSERT_TRUE(omnisim.Start(VESICA_OMNISIM_PATH, {"--hand", "recording", "/nonexistent/hand.csv"}));
