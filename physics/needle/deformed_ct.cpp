@@ -162,6 +162,23 @@ std::shared_ptr<const DeformedCtModel> BuildDeformedCtModel(std::shared_ptr<cons
               m->rib_cells[cell_index(a, bb, cc)] |= bit;
             }
       }
+  {  // Each rib's cells dilated by its reach (and a cell, for where in its cell a point lies).
+    const int reach_cells = static_cast<int>(std::ceil(DeformedCtModel::kRibReach_m / (kCell * m->min_spacing_m))) + 1;
+    m->rib_reach_cells.assign(m->rib_cells.size(), 0);
+    for (int ck = 0; ck < cd[2]; ++ck)
+      for (int cj = 0; cj < cd[1]; ++cj)
+        for (int ci = 0; ci < cd[0]; ++ci) {
+          std::uint32_t bits = 0;
+          for (int dk = -reach_cells; dk <= reach_cells; ++dk)
+            for (int dj = -reach_cells; dj <= reach_cells; ++dj)
+              for (int di = -reach_cells; di <= reach_cells; ++di) {
+                const int a = ci + di, bb = cj + dj, cc = ck + dk;
+                if (a < 0 || bb < 0 || cc < 0 || a >= cd[0] || bb >= cd[1] || cc >= cd[2]) continue;
+                bits |= m->rib_cells[cell_index(a, bb, cc)];
+              }
+          m->rib_reach_cells[cell_index(ci, cj, ck)] = bits;
+        }
+  }
   m->liver_block_reach = BlockReach(patient->liver.lattice);
   m->diaphragm_block_reach = BlockReach(patient->diaphragm.lattice);
   return m;
@@ -218,6 +235,7 @@ void DeformedCt::SetBlend(double w) {
   rib_rotation_.resize(ribs);
   rib_box_lo_.resize(ribs);
   rib_box_hi_.resize(ribs);
+  ribs_within_reach_ = true;
   for (std::size_t r = 0; r < ribs; ++r) {
     const Eigen::Quaterniond a(prev_.rib_rotation[r]), b(now_.rib_rotation[r]);
     rib_rotation_[r] = a.slerp(w_, b).toRotationMatrix();
@@ -232,6 +250,8 @@ void DeformedCt::SetBlend(double w) {
       const Eigen::Vector3d turned = c + rib_rotation_[r] * (q - c);
       box_lo = box_lo.cwiseMin(turned);
       box_hi = box_hi.cwiseMax(turned);
+      // |(R - I)(q - c)| is convex in q: its largest over the rib is at a corner of its box.
+      if ((turned - q).norm() >= DeformedCtModel::kRibReach_m) ribs_within_reach_ = false;
     }
     rib_box_lo_[r] = box_lo;
     rib_box_hi_[r] = box_hi;
@@ -375,7 +395,18 @@ CtSample DeformedCt::Sample(const Eigen::Vector3d& p_W, SampleHint* hint) const 
                             hint ? &hint->diaphragm : nullptr, hint ? &hint->u_diaphragm_m : nullptr),
               kDiaphragmBody);
   const double rib_margin = 2.0 * v.spacing_m.maxCoeff();
+  std::uint32_t candidates = ~0u;
+  if (ribs_within_reach_) {
+    const Eigen::Vector3d cell = (m.to_index * (p_W - v.origin_m)).array() / DeformedCtModel::kRibCellVoxels;
+    const int ci = static_cast<int>(std::floor(cell.x() + 0.5 / DeformedCtModel::kRibCellVoxels)),
+              cj = static_cast<int>(std::floor(cell.y() + 0.5 / DeformedCtModel::kRibCellVoxels)),
+              ck = static_cast<int>(std::floor(cell.z() + 0.5 / DeformedCtModel::kRibCellVoxels));
+    const auto& cd = m.rib_cell_dims;
+    const bool in_grid = ci >= 0 && cj >= 0 && ck >= 0 && ci < cd[0] && cj < cd[1] && ck < cd[2];
+    if (in_grid) candidates = m.rib_reach_cells[static_cast<std::size_t>(ci + cd[0] * (cj + cd[1] * ck))];
+  }
   for (std::size_t r = 0; r < rib_rotation_.size(); ++r) {
+    if (!(candidates & (1u << r))) continue;
     if (!InBox(p_W, rib_box_lo_[r], rib_box_hi_[r], rib_margin)) continue;
     const Eigen::Vector3d& c = patient.ribs[r].centre_m;
     const Eigen::Vector3d q = c + rib_rotation_[r].transpose() * (p_W - c);

@@ -49,6 +49,10 @@ struct DeformedCtModel {
   static constexpr int kRibCellVoxels = 4;
   std::array<int, 3> rib_cell_dims{0, 0, 0};
   std::vector<std::uint32_t> rib_cells;
+  /// Per cell, the ribs (bits) with a voxel within kRibReach_m of it: a rib that has moved less
+  /// than that can only be at a point whose cell lists it, so the others are not even turned.
+  static constexpr double kRibReach_m = 0.04;
+  std::vector<std::uint32_t> rib_reach_cells;
   double min_spacing_m = 0.0;
 };
 inline constexpr std::uint8_t kStillBody = 0, kLiverBody = 1, kDiaphragmBody = 2, kFirstRibBody = 3;
@@ -105,6 +109,7 @@ class DeformedCt {
   // Blended rib poses and boxes (at SetBlend): p_rest = centre + R^T (p - centre).
   std::vector<Eigen::Matrix3d> rib_rotation_;
   std::vector<Eigen::Vector3d> rib_box_lo_, rib_box_hi_;
+  bool ribs_within_reach_ = true;  ///< every rib has moved less than kRibReach_m (rib_reach_cells holds)
   double max_u_m_ = 0.0;
 };
 
