@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -47,41 +48,51 @@ TEST(DeformedCtTest, AtEndTidalItIsTheRestCt) {
 }
 
 TEST(DeformedCtTest, MovingOrgansAreFoundWhereTheyAreNow) {
-  BreathingPatient patient(Patient().model);
-  patient.Update(1.0);  // peak inspiration at 0.25 Hz
-  DeformedCt ct(Patient().ct);
-  ct.SetPatient(patient.snapshot());
-  ct.SetBlend(1.0);
-  const PatientSnapshot& s = patient.snapshot();
-  // Right rib 9's voxels, carried by its pose: same label, same HU as at rest.
-  const LabelVolume& v = Patient().volume.labels;
-  const std::uint8_t rib9 = label::Rib(false, 9);
-  std::size_t r9 = 0;
-  for (std::size_t r = 0; r < Patient().model->ribs.size(); ++r)
-    if (!Patient().model->ribs[r].left && Patient().model->ribs[r].number == 9) r9 = r;
-  int checked = 0;
-  for (int k = 0; k < v.dims[2] && checked < 40; k += 1)
-    for (int j = 0; j < v.dims[1] && checked < 40; j += 3)
-      for (int i = 0; i < v.dims[0] && checked < 40; i += 3) {
-        if (v.At(i, j, k) != rib9) continue;
-        const Eigen::Vector3d moved = s.ribs[r9].Apply(v.Position(i, j, k));
-        const CtSample at = ct.Sample(moved);
-        if (at.label != rib9) continue;  // an edge voxel: its neighbours moved too
-        EXPECT_GT(at.hu, 300.0);
-        ++checked;
-      }
-  EXPECT_GE(checked, 20);
-  EXPECT_GT((s.ribs[r9].Apply(Patient().model->ribs[r9].centre_m + Eigen::Vector3d(0.1, 0, 0)) -
-             (Patient().model->ribs[r9].centre_m + Eigen::Vector3d(0.1, 0, 0)))
-                .norm(),
-            0.002);  // the rib did move
-  // The tumour moved with the liver; it is sampled where it went.
-  EXPECT_GT((s.tumour_centre_m - needle_test::TumourCentre()).norm(), 0.005);
-  EXPECT_EQ(ct.Sample(s.tumour_centre_m).label, label::kTumour);
-  EXPECT_NEAR((ct.TumourCentre_m() - s.tumour_centre_m).norm(), 0.0, 1e-12);
-  // Round trip through the liver's inversion.
-  const Eigen::Vector3d q = ct.LiverRestPoint(s.tumour_centre_m);
-  EXPECT_NEAR((ct.LiverWorldPoint(q) - s.tumour_centre_m).norm(), 0.0, 1e-5);
+  // Quiet breathing, and a thoracic scale of 4 under which ribs move further than the rib cell
+  // map's reach (40 mm), so that every rib is tried.
+  for (double thoracic_scale : {1.0, 4.0}) {
+    BreathingPatient patient(Patient().model);
+    RespirationSettings settings = Patient().model->parameters.respiration;
+    settings.thoracic_scale = thoracic_scale;
+    patient.SetRespiration(settings);
+    patient.Update(1.0);  // peak inspiration at 0.25 Hz
+    DeformedCt ct(Patient().ct);
+    ct.SetPatient(patient.snapshot());
+    ct.SetBlend(1.0);
+    const PatientSnapshot& s = patient.snapshot();
+    // Right rib 9's inner voxels (all six neighbours rib too), carried by its pose: found there,
+    // with the rib's 700 HU.
+    const LabelVolume& v = Patient().volume.labels;
+    const std::uint8_t rib9 = label::Rib(false, 9);
+    std::size_t r9 = 0;
+    for (std::size_t r = 0; r < Patient().model->ribs.size(); ++r)
+      if (!Patient().model->ribs[r].left && Patient().model->ribs[r].number == 9) r9 = r;
+    int checked = 0;
+    double moved_most = 0.0;
+    for (int k = 1; k + 1 < v.dims[2]; ++k)
+      for (int j = 1; j + 1 < v.dims[1]; ++j)
+        for (int i = 1; i + 1 < v.dims[0]; ++i) {
+          if (v.At(i, j, k) != rib9 || v.At(i - 1, j, k) != rib9 || v.At(i + 1, j, k) != rib9 ||
+              v.At(i, j - 1, k) != rib9 || v.At(i, j + 1, k) != rib9 || v.At(i, j, k - 1) != rib9 ||
+              v.At(i, j, k + 1) != rib9)
+            continue;
+          const Eigen::Vector3d moved = s.ribs[r9].Apply(v.Position(i, j, k));
+          moved_most = std::max(moved_most, (moved - v.Position(i, j, k)).norm());
+          const CtSample at = ct.Sample(moved);
+          EXPECT_EQ(at.label, rib9);
+          EXPECT_NEAR(at.hu, 700.0, 1e-6);
+          ++checked;
+        }
+    EXPECT_GE(checked, 20);
+    EXPECT_GT(moved_most, thoracic_scale > 2 ? 0.04 : 0.005) << thoracic_scale;  // it did move (that far)
+    // The tumour moved with the liver; it is sampled where it went.
+    EXPECT_GT((s.tumour_centre_m - needle_test::TumourCentre()).norm(), 0.005);
+    EXPECT_EQ(ct.Sample(s.tumour_centre_m).label, label::kTumour);
+    EXPECT_NEAR((ct.TumourCentre_m() - s.tumour_centre_m).norm(), 0.0, 1e-12);
+    // Round trip through the liver's inversion.
+    const Eigen::Vector3d q = ct.LiverRestPoint(s.tumour_centre_m);
+    EXPECT_NEAR((ct.LiverWorldPoint(q) - s.tumour_centre_m).norm(), 0.0, 1e-5);
+  }
 }
 
 TEST(DeformedCtTest, ANewStateDoesNotJump) {
