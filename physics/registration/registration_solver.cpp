@@ -85,8 +85,9 @@ RegistrationStepReport RegistrationSolver::Step(const std::vector<ControlPoint>&
   const PairingOptions options{settings_.check_normals, settings_.min_normal_cosine, settings_.max_pairing_distance_m};
   pairings_.clear();
   std::vector<const ControlPoint*> paired;
+  const SurfaceSnapshot snapshot(surface_, x);
   for (const ControlPoint& p : points) {
-    if (auto pairing = PairControlPoint(surface_, x, p, options)) {
+    if (auto pairing = PairControlPoint(snapshot, p, options)) {
       pairings_.push_back(*pairing);
       paired.push_back(&p);
     } else {

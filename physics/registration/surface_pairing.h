@@ -36,9 +36,23 @@ struct PairingOptions {
   double max_distance_m = 0.05;
 };
 
-/// Nearest eligible triangle of `surface` at positions x_W (#V by 3) for the point; nothing when
-/// none lies within max_distance_m (or none faces the point's way). Triangles are culled by their
-/// bounding spheres, so the cost is one distance per triangle plus a few closest-point tests.
+/// The surface's triangles at one configuration: bounding spheres and inward normals, computed
+/// once a step and shared by every point paired in it.
+struct SurfaceSnapshot {
+  const RegistrationSurface* surface = nullptr;
+  const Vertices* x_W = nullptr;
+  std::vector<Eigen::Vector3d> centroid_W;
+  std::vector<double> radius_m;
+  std::vector<Eigen::Vector3d> inward_normal_W;  ///< zero for a collapsed triangle
+  SurfaceSnapshot(const RegistrationSurface& surface, const Vertices& x_W);
+};
+
+/// Nearest eligible triangle for the point; nothing when none lies within max_distance_m (or none
+/// faces the point's way). Triangles are culled by their bounding spheres, so the cost is one
+/// squared distance per triangle plus a few closest-point tests.
+std::optional<SurfacePairing> PairControlPoint(const SurfaceSnapshot& snapshot, const ControlPoint& point,
+                                               const PairingOptions& options);
+/// The same for one point at positions x_W (#V by 3), building the snapshot.
 std::optional<SurfacePairing> PairControlPoint(const RegistrationSurface& surface, const Vertices& x_W,
                                                const ControlPoint& point, const PairingOptions& options);
 
