@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace vesica::physics {
 
@@ -208,7 +209,15 @@ void BreathingPatient::Update(double t_s) {
     for (std::size_t i = 0; i < rest.size(); ++i) out[i] = rest[i] + u[i];
   };
   MoveDiaphragm(tendon);
-  MoveLiver();
+  if (liver_motion_) {
+    u_liver_ = liver_motion_(t_s);
+    if (u_liver_.size() != m.liver.lattice.rest_m.size())
+      throw std::invalid_argument("BreathingPatient: the liver motion gave " + std::to_string(u_liver_.size()) +
+                                  " displacements for " + std::to_string(m.liver.lattice.rest_m.size()) +
+                                  " liver elements");
+  } else {
+    MoveLiver();
+  }
   place(m.liver.lattice.rest_m, u_liver_, snapshot_.liver_breathing_m);
   PushLiverCapsule();
 

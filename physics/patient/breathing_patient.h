@@ -8,6 +8,7 @@
 // the next Update. Update and Publish belong to one thread (the physics loop).
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -51,6 +52,14 @@ class BreathingPatient {
   void PushCapsule(const Eigen::Vector3d& tip_m, const Eigen::Vector3d& displacement_m);
   void ReleaseCapsule();
 
+  /// A recorded liver motion (issue 35: a registration result, physics/registration's
+  /// MakePointMotion): the displacement of every liver lattice element (model().liver.lattice
+  /// order) at time t.
+  using LiverMotion = std::function<std::vector<Eigen::Vector3d>(double t_s)>;
+  /// Drives the liver by `motion` instead of ChainMail from the next Update (a scenario setting:
+  /// a measured breathing replayed); an empty function gives the liver back to ChainMail. The
+  /// diaphragm, ribs and the capsule push go on as before. Physics thread.
+  void DriveLiver(LiverMotion motion) { liver_motion_ = std::move(motion); }
   /// Moves every organ for time t (seconds, non-decreasing). Physics thread.
   void Update(double t_s);
   /// The state of the last Update (physics thread).
@@ -91,6 +100,7 @@ class BreathingPatient {
   std::vector<int> drivers_, cap_drivers_;
   std::vector<Eigen::Vector3d> cap_targets_;
   std::vector<double> lift_;
+  LiverMotion liver_motion_;  // empty: ChainMail moves the liver
   PatientSnapshot snapshot_;
   TripleBuffer<PatientSnapshot> render_, haptic_;
 };
