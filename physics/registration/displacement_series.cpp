@@ -57,4 +57,11 @@ std::vector<Eigen::Vector3d> DisplacementSeries::Sample(const std::vector<TetLoc
   return out;
 }
 
+std::function<std::vector<Eigen::Vector3d>(double)> MakePointMotion(std::shared_ptr<const DisplacementSeries> series,
+                                                                    const std::vector<Eigen::Vector3d>& rest_points_W) {
+  if (!series) throw std::invalid_argument("MakePointMotion: no series");
+  std::vector<TetLocation> bound = series->Bind(rest_points_W);
+  return [series = std::move(series), bound = std::move(bound)](double t_s) { return series->Sample(bound, t_s); };
+}
+
 }  // namespace vesica::physics

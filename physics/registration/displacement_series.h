@@ -5,6 +5,8 @@
 // time between frames, and periodic over the series so that a recorded breath repeats.
 
 #include <Eigen/Core>
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include "physics/mesh/barycentric.h"
@@ -37,5 +39,10 @@ class DisplacementSeries {
   std::vector<DisplacementFrame> frames_;
   double period_s_ = 0.0;
 };
+
+/// The series as the motion of fixed material points (rest positions, world): t -> their
+/// displacements, the form BreathingPatient::DriveLiver takes (the liver's lattice elements).
+std::function<std::vector<Eigen::Vector3d>(double)> MakePointMotion(std::shared_ptr<const DisplacementSeries> series,
+                                                                    const std::vector<Eigen::Vector3d>& rest_points_W);
 
 }  // namespace vesica::physics
