@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <stdexcept>
 
 #include "device/stylus/stylus_force.h"
 
@@ -20,7 +21,10 @@ bool SequenceAfter(std::uint32_t a, std::uint32_t b) { return static_cast<std::i
 
 }  // namespace
 
-UdpStylus::UdpStylus(UdpStylusConfig config) : config_(std::move(config)), link_(config_.loss_timeout_ns) {}
+UdpStylus::UdpStylus(UdpStylusConfig config) : config_(std::move(config)), link_(config_.loss_timeout_ns) {
+  if (config_.loss_timeout_ns <= 0) throw std::invalid_argument("UdpStylusConfig: loss_timeout_ns must be > 0");
+  if (!(config_.force_ramp_s >= 0)) throw std::invalid_argument("UdpStylusConfig: force_ramp_s must be >= 0");
+}
 
 DeviceStatus UdpStylus::Open() {
   std::lock_guard lock(mu_);

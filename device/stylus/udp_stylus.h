@@ -40,6 +40,7 @@ struct UdpStylusConfig {
 /// thread, the rest from any thread.
 class UdpStylus final : public StylusDevice {
  public:
+  /// std::invalid_argument for loss_timeout_ns <= 0 or a negative or NaN force_ramp_s.
   explicit UdpStylus(UdpStylusConfig config);
 
   /// Binds the local port; kTransportError (last_error() says why) when it cannot. Then

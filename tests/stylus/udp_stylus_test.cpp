@@ -206,6 +206,15 @@ TEST_F(UdpStylusTest, NonFiniteForceIsRefusedAndTheForceInUseKept) {
   EXPECT_EQ(stylus_->RenderedForce(), Eigen::Vector3d(0.0, 0.0, -3.3));
 }
 
+TEST(UdpStylusOpenTest, BadConfigurationIsRefused) {
+  UdpStylusConfig config;
+  config.loss_timeout_ns = 0;
+  EXPECT_THROW(UdpStylus{config}, std::invalid_argument);
+  config = {};
+  config.force_ramp_s = -0.01;
+  EXPECT_THROW(UdpStylus{config}, std::invalid_argument);
+}
+
 TEST(UdpStylusOpenTest, APortInUseIsATransportErrorNamingThePort) {
   std::string error;
   auto holder = UdpDatagramSocket::Open({"127.0.0.1", 0}, {"127.0.0.1", 9}, &error);
