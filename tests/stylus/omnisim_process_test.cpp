@@ -145,9 +145,15 @@ TEST_F(OmnisimProcessTest, KillNineIsALostLinkWithForceOffThenARestartRecovers) 
   if (stylus_->Status() == DeviceStatus::kOk) {
     EXPECT_LT(stylus_->RenderedForce().z(), 1.0);
   }
+  for (int i = 0; i < 100; ++i) {
+    stylus_->SetTipForce(push);
+    Tick();
+  }
   again.Kill(SIGTERM);
   EXPECT_EQ(again.Finish(&out), 0);
   EXPECT_NE(out.find("poses_sent="), std::string::npos) << out;
+  EXPECT_NE(out.find(" rejected=0 "), std::string::npos) << out;  // every force datagram decoded
+  EXPECT_EQ(out.find("forces_received=0 "), std::string::npos) << out;
 }
 
 TEST_F(OmnisimProcessTest, BuiltInBiopsyStreamsTheScriptedHand) {
