@@ -12,7 +12,8 @@ FemSettings DefaultRegistrationFemSettings(const std::string& body_name) {
   s.integrator = TimeIntegrator::kBackwardEuler;
   s.solver = LinearSolverKind::kRotatedFactorPcg;
   s.time_step_s = 0.05;
-  s.pcg_relative_tolerance = 1e-6;
+  s.pcg_relative_tolerance = 1e-4;  // the constraints correct the free step anyway: 1e-6 gave the same registration (to
+                                    // 0.01 mm) in 7 iterations instead of 5
   s.pcg_max_iterations = 20;
   return s;
 }

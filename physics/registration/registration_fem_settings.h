@@ -10,7 +10,7 @@
 
 namespace vesica::physics {
 
-/// Liver-like defaults: E 4 kPa, nu 0.45, 1,060 kg/m^3, h 0.05 s, PCG to 1e-6 in <= 20 iterations.
+/// Liver-like defaults: E 4 kPa, nu 0.45, 1,060 kg/m^3, h 0.05 s, PCG to 1e-4 in <= 20 iterations.
 FemSettings DefaultRegistrationFemSettings(const std::string& body_name = "registered organ");
 
 }  // namespace vesica::physics
