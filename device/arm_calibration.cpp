@@ -21,4 +21,12 @@ Eigen::Vector3d ArmCalibration::CompensationCurrent(const ArmJoints& q, const Ei
   return {tau[0] / effort_per_amp[0], tau[1] / effort_per_amp[1], tau[2] / effort_per_amp[2]};
 }
 
+ArmActuation ArmCalibration::Corrected(const ArmActuation& nominal) const {
+  ArmActuation a = nominal;
+  a.yaw.torque_constant_Nm_per_A *= torque_constant_correction[0];
+  a.pitch.torque_constant_Nm_per_A *= torque_constant_correction[1];
+  a.insertion.torque_constant_Nm_per_A *= torque_constant_correction[2];
+  return a;
+}
+
 }  // namespace vesica::device

@@ -266,11 +266,14 @@ void CanArm::SendCommand(fp::Nanoseconds now, bool zero) {
     const double on_s = 1e-9 * static_cast<double>(t - enabled_since_ns_);
     ramp = config_.force_ramp_s > 0.0 ? std::clamp(on_s / config_.force_ramp_s, 0.0, 1.0) : 1.0;
   }
+  const bool calibrated = calibration_reader_.state() == NodeCalibrationReader::State::kValid;
   const Eigen::Vector3d compensation_A =
-      calibration_reader_.state() == NodeCalibrationReader::State::kValid
-          ? Eigen::Vector3d(calibration_reader_.calibration().CompensationCurrent(q_, qd_))
-          : Eigen::Vector3d::Zero();
-  last_command_ = TipForceToMotorCurrents(q_, ramp * f_request_T_, config_.actuation, ramp * compensation_A);
+      calibrated ? Eigen::Vector3d(calibration_reader_.calibration().CompensationCurrent(q_, qd_))
+                 : Eigen::Vector3d::Zero();
+  // The motors' torque constants as the reference-load check measured them (protocol 1.3).
+  const ArmActuation actuation =
+      calibrated ? calibration_reader_.calibration().Corrected(config_.actuation) : config_.actuation;
+  last_command_ = TipForceToMotorCurrents(q_, ramp * f_request_T_, actuation, ramp * compensation_A);
   fp::CurrentCommand c{config_.node_id, command_counter_++, fp::CommandMode::MotorCurrent, {}};
   for (int j = 0; j < 3; ++j) c.value[j] = static_cast<float>(last_command_.current_A[j]);
   if (Send(c, now) && request_sent_ns_ < 0) request_sent_ns_ = t;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "firmware_protocol/node/parameter_store.h"
 #include "firmware_protocol/node/parameter_table.h"
 
 namespace vesica::device {
@@ -11,16 +12,28 @@ namespace {
 namespace param = fp::param;
 
 // What is read, in this order (indices into raw_).
-constexpr std::uint16_t kReads[] = {param::kActiveSlot,          param::kCalibrationToolVersion,
-                                    param::kSlotStatus + 0,      param::kSlotStatus + 1,
-                                    param::kCoulombFriction + 0, param::kCoulombFriction + 1,
-                                    param::kCoulombFriction + 2, param::kViscousFriction + 0,
-                                    param::kViscousFriction + 1, param::kViscousFriction + 2,
-                                    param::kGravitySin,          param::kGravityCos,
-                                    param::kTorqueConstant + 0,  param::kTorqueConstant + 1,
-                                    param::kTorqueConstant + 2,  param::kGearRatio + 0,
-                                    param::kGearRatio + 1,       param::kGearRatio + 2,
-                                    param::kCalibrationDate_s};
+constexpr std::uint16_t kReads[] = {param::kActiveSlot,
+                                    param::kCalibrationToolVersion,
+                                    param::kSlotStatus + 0,
+                                    param::kSlotStatus + 1,
+                                    param::kCoulombFriction + 0,
+                                    param::kCoulombFriction + 1,
+                                    param::kCoulombFriction + 2,
+                                    param::kViscousFriction + 0,
+                                    param::kViscousFriction + 1,
+                                    param::kViscousFriction + 2,
+                                    param::kGravitySin,
+                                    param::kGravityCos,
+                                    param::kTorqueConstant + 0,
+                                    param::kTorqueConstant + 1,
+                                    param::kTorqueConstant + 2,
+                                    param::kGearRatio + 0,
+                                    param::kGearRatio + 1,
+                                    param::kGearRatio + 2,
+                                    param::kCalibrationDate_s,
+                                    param::kTorqueConstantCorrection + 0,
+                                    param::kTorqueConstantCorrection + 1,
+                                    param::kTorqueConstantCorrection + 2};
 enum : int {
   kActive,
   kTool,
@@ -32,7 +45,8 @@ enum : int {
   kGravCos,
   kKt,
   kGear = kKt + 3,
-  kDate = kGear + 3
+  kDate = kGear + 3,
+  kCorrection  // protocol 1.3; a node below it has none (neutral 1)
 };
 
 fp::StorageResult SlotStatus(std::uint32_t raw) {
@@ -47,7 +61,7 @@ std::string Hex(std::uint32_t v) {
 
 }  // namespace
 
-static_assert(sizeof(kReads) / sizeof(kReads[0]) == 19);
+static_assert(sizeof(kReads) / sizeof(kReads[0]) == 22);
 
 void NodeCalibrationReader::Restart() {
   state_ = State::kReading;
@@ -79,6 +93,15 @@ bool NodeCalibrationReader::Accept(const fp::ParameterResponse& r) {
   if (state_ != State::kReading || r.op != fp::ParameterOp::Read) return false;
   for (int k = 0; k < kReadCount; ++k) {
     if (kReads[k] != r.index) continue;
+    const int spec = fp::parameter_slot(r.index);
+    if (r.aborted && r.raw_value == static_cast<std::uint32_t>(fp::AbortCode::NoSuchParameter) && spec >= 0 &&
+        fp::parameter_layout(static_cast<std::size_t>(spec)) > 1) {
+      // A node below protocol 1.3 stores no layout-2 value: its neutral default.
+      raw_[k] = fp::f32_bits(static_cast<float>(fp::kParameterSpecs[spec].default_value));
+      answered_ |= 1u << k;
+      if (answered_ == (1u << kReadCount) - 1u) Evaluate();
+      return true;
+    }
     if (r.aborted) {
       refused_index_ = r.index;
       refused_code_ = r.raw_value;
@@ -123,6 +146,15 @@ void NodeCalibrationReader::Evaluate() {
     c.coulomb[j] = value(kCoulomb + j);
     c.viscous[j] = value(kViscous + j);
     c.effort_per_amp[j] = value(kKt + j) * value(kGear + j);
+    c.torque_constant_correction[j] = value(kCorrection + j);
+    if (!(c.torque_constant_correction[j] >= 0.5 && c.torque_constant_correction[j] <= 2.0)) {
+      problem_ = std::string("slot ") + slot + ": the " +
+                 (j == 0   ? "yaw"
+                  : j == 1 ? "pitch"
+                           : "insertion") +
+                 " torque-constant correction is out of range";
+      return;
+    }
     const char* joint = j == 0 ? "yaw" : j == 1 ? "pitch" : "insertion";
     if (!(c.coulomb[j] >= 0.0 && std::isfinite(c.coulomb[j]) && c.viscous[j] >= 0.0 && std::isfinite(c.viscous[j]))) {
       problem_ = std::string("slot ") + slot + ": the " + joint + " friction is out of range";

@@ -41,7 +41,7 @@ class NodeCalibrationReader {
  private:
   void Evaluate();
 
-  static constexpr int kReadCount = 19;
+  static constexpr int kReadCount = 22;
   State state_ = State::kReading;
   std::uint32_t answered_ = 0;  ///< bit k: read k answered
   std::uint32_t raw_[kReadCount] = {};

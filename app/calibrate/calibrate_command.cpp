@@ -87,9 +87,19 @@ CommandOutcome Measure(ToolSession& s, int arm, const CalibrateRequest& request,
                                     ": not confirmed; nothing moved, nothing "
                                     "was written",
                                 {{"arm", arm}});
-  // The torque-constant check and the guided hand steps store nothing (yet): nothing to save.
+  // The torque-constant check and the guided hand steps alone store what they measured on a node
+  // of protocol 1.3 (image layout 2); an older node has no place for it: a check, nothing saved.
+  const bool layout2 = a.link->negotiated_minor() != 0xFF && a.link->negotiated_minor() >= fp::kLayout2Minor;
   const bool check_only =
-      std::none_of(request.steps.begin(), request.steps.end(), [](Step x) { return InfoOf(x).in_whole; });
+      !layout2 && std::none_of(request.steps.begin(), request.steps.end(), [](Step x) { return InfoOf(x).in_whole; });
+  const bool measures_layout2 = std::any_of(request.steps.begin(), request.steps.end(), [](Step x) {
+    return x == Step::kTorqueConstant || x == Step::kRollOffset || x == Step::kJawSpan || x == Step::kPedalTravel;
+  });
+  if (measures_layout2 && !layout2)
+    s.ui().Note(a.text + ": node " + std::to_string(a.link->node_id()) + " speaks protocol 1." +
+                std::to_string(a.link->negotiated_minor()) +
+                ": the torque-constant correction and the hand sensors' calibration are measured and reported but "
+                "not stored (they need 1.3; update the arm's firmware)");
   // The emulated arms have the reference load fixture in their emulator: it is clamped on here.
   const bool torque_check =
       std::find(request.steps.begin(), request.steps.end(), Step::kTorqueConstant) != request.steps.end();

@@ -3,6 +3,7 @@
 #include "device/calibration/calibration_abort.h"
 #include "device/calibration/calibration_step.h"
 #include "device/calibration/joint_servo.h"
+#include "device/calibration/layout2_results.h"
 #include "firmware_protocol/node/parameter_table.h"
 
 namespace vesica::app::calibrate {
@@ -49,7 +50,7 @@ void RunStep(Step s, cal::StepContext& ctx) {
 
 // The values the steps leave only in the result; what they write themselves (direction, offsets)
 // is already on the node. Only what ran is written: the rest stays as stored.
-void Commit(cal::CalibrationLink& link, const cal::CalibrationPlan& plan, const RunOutcome& o) {
+void Commit(cal::CalibrationLink& link, const cal::CalibrationPlan& plan, RunOutcome& o) {
   const auto ran = [&](Step s) {
     for (Step x : o.steps)
       if (x == s) return true;
@@ -74,6 +75,7 @@ void Commit(cal::CalibrationLink& link, const cal::CalibrationPlan& plan, const 
     link.WriteF32(param::kGravitySin, static_cast<float>(o.result.gravity_sin));
     link.WriteF32(param::kGravityCos, static_cast<float>(o.result.gravity_cos));
   }
+  cal::StoreLayout2Results(link, plan.joints, o.result);  // protocol 1.3: torque constant, hand sensors
   link.WriteU32(param::kCalibrationDate_s, plan.date_s);
   link.WriteU32(param::kCalibrationToolVersion, plan.tool_version);
   link.Save();

@@ -60,6 +60,8 @@ json ToJson(const cal::NodeInfo& info, const NodeHeartbeat* hb) {
   j["calibration_date_s"] = info.calibration_date_s;
   j["calibration_date"] = DateText(info.calibration_date_s);
   j["calibration_tool_version"] = VersionText(info.calibration_tool_version);
+  j["image_layout"] = info.stored_layout == 0 ? json(nullptr) : json(info.stored_layout);
+  j["absent_fields"] = info.AbsentFields();  // a layout-1 image's missing values (neutral defaults)
   return j;
 }
 
@@ -74,10 +76,16 @@ json ToJson(const CalibrationValues& v) {
                        {"joint_max", o.joint_max},
                        {"index_position", o.index_position},
                        {"coulomb", o.coulomb},
-                       {"viscous", o.viscous}};
+                       {"viscous", o.viscous},
+                       {"torque_constant_correction", o.torque_constant_correction}};
   }
   j["pitch"]["gravity_sin"] = v.gravity_sin;
   j["pitch"]["gravity_cos"] = v.gravity_cos;
+  j["hand"] = {{"roll_sensor_offset_rad", v.roll_sensor_offset_rad},
+               {"jaw_closed_counts", v.jaw_closed_counts},
+               {"jaw_open_counts", v.jaw_open_counts},
+               {"pedal_released_counts", v.pedal_released_counts},
+               {"pedal_pressed_counts", v.pedal_pressed_counts}};
   return j;
 }
 
@@ -151,12 +159,17 @@ std::string ValuesText(const CalibrationValues& v) {
     const auto& o = v.joint[k];
     std::snprintf(b, sizeof b,
                   "  %-9s direction %+d  offset %+.5f  range [%+.4f, %+.4f]  index %+.5f  current offset %+.4f A  "
-                  "coulomb %.5f  viscous %.5f\n",
+                  "coulomb %.5f  viscous %.5f  torque constant x%.4f\n",
                   JointName(k), o.direction, o.position_offset, o.joint_min, o.joint_max, o.index_position,
-                  o.current_offset_A, o.coulomb, o.viscous);
+                  o.current_offset_A, o.coulomb, o.viscous, o.torque_constant_correction);
     s += b;
   }
   std::snprintf(b, sizeof b, "  gravity   sin %+.5f N m  cos %+.5f N m\n", v.gravity_sin, v.gravity_cos);
+  s += b;
+  std::snprintf(b, sizeof b, "  hand      roll offset %+.4f rad  jaw %u .. %u counts  pedal %u .. %u counts\n",
+                v.roll_sensor_offset_rad, static_cast<unsigned>(v.jaw_closed_counts),
+                static_cast<unsigned>(v.jaw_open_counts), static_cast<unsigned>(v.pedal_released_counts),
+                static_cast<unsigned>(v.pedal_pressed_counts));
   s += b;
   return s;
 }

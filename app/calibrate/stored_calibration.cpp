@@ -25,24 +25,40 @@ CalibrationValues ValuesOf(const fp::ParameterStore& p) {
     o.index_position = p.f32(param::kIndexPosition + jj);
     o.coulomb = p.f32(param::kCoulombFriction + jj);
     o.viscous = p.f32(param::kViscousFriction + jj);
+    o.torque_constant_correction = p.f32(param::kTorqueConstantCorrection + jj);
   }
   v.gravity_sin = p.f32(param::kGravitySin);
   v.gravity_cos = p.f32(param::kGravityCos);
+  v.roll_sensor_offset_rad = p.f32(param::kRollSensorOffset);
+  v.jaw_closed_counts = p.u32(param::kJawClosedCounts);
+  v.jaw_open_counts = p.u32(param::kJawOpenCounts);
+  v.pedal_released_counts = p.u32(param::kPedalReleasedCounts);
+  v.pedal_pressed_counts = p.u32(param::kPedalPressedCounts);
   return v;
 }
 
 void Encode(StoredImage& image) {
   std::uint8_t params[fp::ParameterStore::kImageSize];
-  image.params.serialize(params, sizeof params);
-  image.bytes.assign(fp::slot::kSize, 0);
-  fp::encode_slot(image.header, params, sizeof params, image.bytes.data(), image.bytes.size());
+  const std::size_t n = image.params.serialize(params, sizeof params, image.layout);
+  image.bytes.assign(fp::slot::size_of_layout(image.layout), 0);
+  fp::encode_slot(image.header, params, n, image.bytes.data(), image.bytes.size());
 }
+
+namespace {
+// Whether the node has parameter i (a node below protocol 1.3 has no layout-2 parameters).
+bool NodeHas(const device::calibration::CalibrationLink& link, std::size_t i) {
+  return fp::parameter_layout(i) == 1 || link.negotiated_minor() == 0xFF ||
+         link.negotiated_minor() >= fp::kLayout2Minor;
+}
+}  // namespace
 
 StoredImage ReadStoredCalibration(device::calibration::CalibrationLink& link,
                                   const device::calibration::NodeInfo& info) {
   StoredImage image;
-  for (const fp::ParameterSpec& spec : fp::kParameterSpecs) {
-    if (!spec.persistent) continue;  // the image holds defaults there, as the node's does
+  image.layout = info.stored_layout == 1 ? 1 : fp::slot::kLayoutVersion;
+  for (std::size_t i = 0; i < fp::kParameterCount; ++i) {
+    const fp::ParameterSpec& spec = fp::kParameterSpecs[i];
+    if (!spec.persistent || !NodeHas(link, i)) continue;  // the image holds defaults there, as the node's does
     image.params.set_internal(spec.index, link.Read(spec.index).raw_value);
   }
   image.header.generation =
@@ -75,10 +91,11 @@ ImageFileCheck ReadImageFile(const std::string& path) {
   }
   std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const bool magic = bytes.size() >= 4 && fp::slot_detail::get_u32(bytes.data()) == fp::slot::kMagic;
-  if (!magic || bytes.size() != fp::slot::kSize) {
+  if (!magic || (bytes.size() != fp::slot::kSize && bytes.size() != fp::slot::kLayout1Size)) {
     c.exit_code = kExitStorage;
     c.message = path + " is not a Vesica calibration image (" +
-                (magic ? std::to_string(bytes.size()) + " bytes, a slot has " + std::to_string(fp::slot::kSize)
+                (magic ? std::to_string(bytes.size()) + " bytes, a slot has " + std::to_string(fp::slot::kSize) +
+                             " (layout 2) or " + std::to_string(fp::slot::kLayout1Size) + " (layout 1)"
                        : std::string("no VCS1 header")) +
                 "); nothing was written";
     return c;
@@ -89,8 +106,9 @@ ImageFileCheck ReadImageFile(const std::string& path) {
     c.message = path + ": " + device::calibration::NodeInfo::SlotText(check.status) + "; nothing was written";
     return c;
   }
-  if (c.image.params.deserialize(bytes.data() + fp::slot::kHeaderSize, fp::ParameterStore::kImageSize) !=
-      fp::StorageResult::Ok) {
+  if (check.size != bytes.size() ||
+      c.image.params.deserialize(bytes.data() + fp::slot::kHeaderSize, bytes.size() - fp::slot::kHeaderSize - 4,
+                                 &c.image.layout) != fp::StorageResult::Ok) {
     c.exit_code = kExitStorage;
     c.message = path + ": the parameter image inside is not valid; nothing was written";
     return c;
@@ -101,8 +119,11 @@ ImageFileCheck ReadImageFile(const std::string& path) {
 }
 
 void WriteToNode(device::calibration::CalibrationLink& link, const StoredImage& image) {
-  for (const fp::ParameterSpec& spec : fp::kParameterSpecs) {
-    if (!spec.persistent || spec.access != fp::ParameterAccess::ReadWrite || spec.index == param::kNodeId) continue;
+  for (std::size_t i = 0; i < fp::kParameterCount; ++i) {
+    const fp::ParameterSpec& spec = fp::kParameterSpecs[i];
+    if (!spec.persistent || spec.access != fp::ParameterAccess::ReadWrite || spec.index == param::kNodeId ||
+        !NodeHas(link, i))
+      continue;
     const std::uint32_t raw = image.params.u32(spec.index);
     switch (spec.type) {
       case fp::ParameterType::F32:

@@ -22,16 +22,23 @@ struct CalibrationValues {
     int direction = 1;
     double position_offset = 0, current_offset_A = 0, joint_min = 0, joint_max = 0, index_position = 0;
     double coulomb = 0, viscous = 0;
+    double torque_constant_correction = 1;  ///< layout 2 (protocol 1.3)
   };
   std::array<Joint, 3> joint;
   double gravity_sin = 0, gravity_cos = 0;
+  /// Layout 2 (protocol 1.3): the hand sensors' calibration; closed = open, released = pressed:
+  /// not measured.
+  double roll_sensor_offset_rad = 0;
+  std::uint32_t jaw_closed_counts = 0, jaw_open_counts = 0;
+  std::uint32_t pedal_released_counts = 0, pedal_pressed_counts = 0;
 };
 CalibrationValues ValuesOf(const fp::ParameterStore& p);
 
 struct StoredImage {
   fp::SlotHeader header;
   fp::ParameterStore params;
-  std::vector<std::uint8_t> bytes;  ///< slot::kSize bytes, as in the node's flash
+  std::uint16_t layout = fp::slot::kLayoutVersion;  ///< 1 for a node below protocol 1.3, or an old file
+  std::vector<std::uint8_t> bytes;  ///< the slot's bytes (slot::size_of_layout(layout)), as in the node's flash
 };
 
 /// Reads the node's persistent parameters and builds the image of its booted slot (generation,
@@ -54,7 +61,8 @@ struct ImageFileCheck {
 ImageFileCheck ReadImageFile(const std::string& path);
 
 /// Writes the image's calibration back (every persistent read-write parameter but the node id,
-/// its date and tool version) and saves: the node stores it in its older slot as the newest.
+/// its date and tool version) and saves: the node stores it in its older slot as the newest. A
+/// node below protocol 1.3 gets layout 1's parameters only (it has no others).
 void WriteToNode(device::calibration::CalibrationLink& link, const StoredImage& image);
 
 /// "A" / "B" / "-".

@@ -2,6 +2,7 @@
 
 #include "device/calibration/calibration_abort.h"
 #include "device/calibration/calibration_step.h"
+#include "device/calibration/layout2_results.h"
 #include "firmware_protocol/node/parameter_table.h"
 
 namespace vesica::device::calibration {
@@ -73,6 +74,7 @@ void ArmCalibrator::Commit(CalibrationResult& result) {
     link_.WriteF32(fp::param::kGravitySin, static_cast<float>(result.gravity_sin));
     link_.WriteF32(fp::param::kGravityCos, static_cast<float>(result.gravity_cos));
   }
+  StoreLayout2Results(link_, plan_.joints, result);
   link_.WriteU32(fp::param::kCalibrationDate_s, plan_.date_s);
   link_.WriteU32(fp::param::kCalibrationToolVersion, plan_.tool_version);
   link_.Save();

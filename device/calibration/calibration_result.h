@@ -66,7 +66,10 @@ struct CalibrationResult {
   double gravity_cos = 0.0;
   std::vector<GravityHold> gravity_holds;
   HandSensorCalibration hand;
-  bool saved = false;                      ///< stored in a slot on the node
+  bool saved = false;  ///< stored in a slot on the node
+  /// Set when something measured could not be stored (a node below protocol 1.3 has no place for
+  /// the torque-constant correction and the hand sensors' calibration), saying so; else empty.
+  std::string not_stored;
   AbortReason abort = AbortReason::kNone;  ///< why it stopped early
   std::string message;                     ///< for the technician
   std::string failed_step;

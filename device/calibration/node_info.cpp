@@ -40,6 +40,14 @@ std::string NodeInfo::SlotText(fp::StorageResult r) {
   return "?";
 }
 
+std::vector<std::string> NodeInfo::AbsentFields() const {
+  std::vector<std::string> absent;
+  if (stored_layout != 1) return absent;
+  for (std::size_t i = 0; i < fp::kParameterCount; ++i)
+    if (fp::parameter_layout(i) > 1 && fp::kParameterSpecs[i].persistent) absent.push_back(fp::kParameterSpecs[i].name);
+  return absent;
+}
+
 std::string NodeInfo::Describe() const {
   std::string s = "node " + std::to_string(identity.node) + ", serial " + std::to_string(identity.serial) +
                   ", firmware " + Version(firmware_version) + ", protocol " + std::to_string(identity.protocol_major) +
@@ -56,7 +64,15 @@ std::string NodeInfo::Describe() const {
   } else {
     s += std::string("calibration: slot ") + (active_slot == 0 ? "A" : "B") + ", generation " +
          std::to_string(slot_generation[static_cast<std::size_t>(active_slot)]) + ", " + Date(calibration_date_s) +
-         ", tool " + Version(calibration_tool_version) + "\n";
+         ", tool " + Version(calibration_tool_version) + ", image layout " + std::to_string(stored_layout) + "\n";
+    const std::vector<std::string> absent = AbsentFields();
+    if (!absent.empty()) {
+      s += identity.max_minor < fp::kLayout2Minor
+               ? "  this node (protocol 1." + std::to_string(identity.max_minor) + ") keeps layout 1 only; it has no:"
+               : std::string("  layout 1 (a 1.0 .. 1.2 tool's) lacks, neutral:");
+      for (const std::string& name : absent) s += " " + name;
+      s += "\n";
+    }
   }
   for (int k = 0; k < 2; ++k) {
     s += std::string("slot ") + (k == 0 ? "A" : "B") + ": " + SlotText(slot_status[k]);
@@ -89,6 +105,11 @@ NodeInfo ReadNodeInfo(CalibrationLink& link) {
   }
   info.calibration_date_s = link.ReadU32(fp::param::kCalibrationDate_s);
   info.calibration_tool_version = link.ReadU32(fp::param::kCalibrationToolVersion);
+  // A node below protocol 1.3 has no stored_layout parameter: all it stores is layout 1.
+  if (info.active_slot >= 0)
+    info.stored_layout = info.identity.max_minor < fp::kLayout2Minor
+                             ? 1
+                             : static_cast<std::uint16_t>(link.ReadU32(fp::param::kStoredLayout));
   return info;
 }
 

@@ -25,7 +25,12 @@ struct NodeInfo {
   std::array<std::uint32_t, 2> slot_generation{};
   std::uint32_t calibration_date_s = 0;
   std::uint32_t calibration_tool_version = 0;
+  /// Image layout of the booted slot: 2 (protocol 1.3), 1 (a 1.0 .. 1.2 tool's, or any slot of a
+  /// node below 1.3), 0 when none is booted.
+  std::uint16_t stored_layout = 0;
 
+  /// The parameters the booted image lacks (a layout-1 image: layout 2's, at neutral defaults).
+  std::vector<std::string> AbsentFields() const;
   /// The slot's state in words: "ok", "blank", "corrupt (bad CRC)", ...
   static std::string SlotText(fp::StorageResult r);
   /// A few lines for a person: versions, faults, slots, naming a corrupt slot.

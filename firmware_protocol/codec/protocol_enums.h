@@ -12,7 +12,10 @@ inline constexpr std::uint8_t kProtocolMajor = 1;
 // parameters (docs/protocol.md sections 9 and 11).
 // Minor 2: the calibration session's own watchdog and speed bound, and the raw hand-sensor
 // readout for the guided hand steps (section 11).
-inline constexpr std::uint8_t kProtocolMinor = 2;
+// Minor 3: calibration image layout 2 (section 9): the torque-constant correction, the roll sensor
+// offset, the jaw handle's span and the pedal's travel are stored and used; a layout-1 image of an
+// older tool still boots, its missing values neutral.
+inline constexpr std::uint8_t kProtocolMinor = 3;
 inline constexpr int kJointCount = 3;  // actuated joints per arm: yaw, pitch, insertion
 
 // Node state machine (docs/protocol.md "Node state machine").

@@ -17,11 +17,21 @@ namespace vesica::fp {
 
 namespace slot {
 inline constexpr std::uint32_t kMagic = 0x31534356;  // "VCS1"
-inline constexpr std::uint16_t kLayoutVersion = 1;
+// A slot's layout is its parameter image's: 2 is written (protocol 1.3), 1 (1.0 .. 1.2) still read.
+inline constexpr std::uint16_t kLayoutVersion = ParameterStore::kLayoutVersion;
 inline constexpr std::size_t kHeaderSize = 24;
-inline constexpr std::size_t kSize = kHeaderSize + ParameterStore::kImageSize + 4;
-// Slots start on 256-byte boundaries (a flash sector each), A at 0, B at kStride.
-inline constexpr std::size_t kStride = (kSize + 255) / 256 * 256;
+// Bytes of a slot of a layout (0: unknown layout).
+constexpr std::size_t size_of_layout(std::uint16_t layout) {
+  return ParameterStore::image_size_of_layout(layout) == 0
+             ? 0
+             : kHeaderSize + ParameterStore::image_size_of_layout(layout) + 4;
+}
+inline constexpr std::size_t kSize = size_of_layout(kLayoutVersion);  // the largest: read this many
+inline constexpr std::size_t kLayout1Size = size_of_layout(1);
+// Slots start on 256-byte boundaries (a flash sector each), A at 0, B at kStride. Boards in the
+// field have B at 512: a layout that outgrew it would orphan their slot B.
+inline constexpr std::size_t kStride = 512;
+static_assert(kSize <= kStride && kLayout1Size <= kSize, "a slot must fit its 512-byte stride");
 inline constexpr int kCount = 2;
 inline constexpr std::uint32_t kNoSlot = 0xFF;  // active_slot when the node runs on defaults
 constexpr std::size_t offset(int s) { return static_cast<std::size_t>(s) * kStride; }
@@ -35,10 +45,13 @@ struct SlotHeader {
   std::uint32_t serial = 0;        // the board's serial when saved
 };
 
-// A slot's state as read back: Ok, BadMagic (blank/erased), BadVersion, BadSize, BadCrc.
+// A slot's state as read back: Ok, BadMagic (blank/erased), BadVersion, BadSize, BadCrc; for an Ok
+// slot its layout (1 or 2) and size in bytes.
 struct SlotCheck {
   StorageResult status = StorageResult::BadMagic;
   SlotHeader header{};
+  std::uint16_t layout = 0;
+  std::size_t size = 0;
 };
 
 namespace slot_detail {
@@ -51,14 +64,19 @@ inline std::uint32_t get_u32(const std::uint8_t* p) {
 }
 }  // namespace slot_detail
 
-// Writes header + image + CRC into out (capacity >= slot::kSize). Returns bytes written or 0.
+// Writes header + image + CRC into out (capacity >= the slot's size); the layout is the image's
+// (ParameterStore::serialize). Returns bytes written or 0.
 inline std::size_t encode_slot(const SlotHeader& h, const std::uint8_t* image, std::size_t image_size,
                                std::uint8_t* out, std::size_t capacity) {
   using namespace slot_detail;
-  if (capacity < slot::kSize || image_size != ParameterStore::kImageSize) return 0;
+  const std::uint16_t layout = image_size == ParameterStore::kImageSize          ? 2
+                               : image_size == ParameterStore::kLayout1ImageSize ? 1
+                                                                                 : 0;
+  const std::size_t size = slot::size_of_layout(layout);
+  if (layout == 0 || capacity < size) return 0;
   put_u32(out, slot::kMagic);
-  out[4] = static_cast<std::uint8_t>(slot::kLayoutVersion);
-  out[5] = static_cast<std::uint8_t>(slot::kLayoutVersion >> 8);
+  out[4] = static_cast<std::uint8_t>(layout);
+  out[5] = static_cast<std::uint8_t>(layout >> 8);
   out[6] = static_cast<std::uint8_t>(image_size);
   out[7] = static_cast<std::uint8_t>(image_size >> 8);
   put_u32(out + 8, h.generation);
@@ -66,43 +84,54 @@ inline std::size_t encode_slot(const SlotHeader& h, const std::uint8_t* image, s
   put_u32(out + 16, h.tool_version);
   put_u32(out + 20, h.serial);
   for (std::size_t i = 0; i < image_size; ++i) out[slot::kHeaderSize + i] = image[i];
-  const std::size_t body = slot::kSize - 4;
+  const std::size_t body = size - 4;
   put_u32(out + body, crc32(out, body));
-  return slot::kSize;
+  return size;
 }
 
-// Checks a slot read from storage; the parameter image inside is checked by ParameterStore later.
+// Checks a slot read from storage (n: the bytes read, slot::kSize from a slot's start, or exactly
+// the slot from a file); the parameter image inside is checked by ParameterStore later.
 inline SlotCheck check_slot(const std::uint8_t* in, std::size_t n) {
   using namespace slot_detail;
   SlotCheck c;
-  if (n < slot::kSize) {
+  if (n < slot::kLayout1Size) {
     c.status = StorageResult::BadSize;
     return c;
   }
   if (get_u32(in) != slot::kMagic) {
     // Erased flash reads 0xFF; anything else without the magic is a torn or foreign write.
     bool erased = true;
-    for (std::size_t i = 0; i < slot::kSize && erased; ++i) erased = in[i] == 0xFF || in[i] == 0x00;
+    for (std::size_t i = 0; i < slot::kLayout1Size && erased; ++i) erased = in[i] == 0xFF || in[i] == 0x00;
     c.status = erased ? StorageResult::BadMagic : StorageResult::BadCrc;
     return c;
   }
   const std::uint16_t version = static_cast<std::uint16_t>(in[4] | (in[5] << 8));
   const std::uint16_t payload = static_cast<std::uint16_t>(in[6] | (in[7] << 8));
-  const std::size_t body = slot::kSize - 4;
-  // The CRC first: a torn header must read as corrupt, not as a different version.
+  // The layout names the size the CRC covers. The CRC first: a torn header must read as corrupt,
+  // not as a different version; a layout this firmware does not know is checked at its own size
+  // (the largest it knows), so only an intact slot of a newer tool reads as BadVersion.
+  const std::size_t known = slot::size_of_layout(version);
+  const std::size_t size = known != 0 ? known : slot::kSize;
+  if (n < size) {
+    c.status = StorageResult::BadSize;
+    return c;
+  }
+  const std::size_t body = size - 4;
   if (crc32(in, body) != get_u32(in + body)) {
     c.status = StorageResult::BadCrc;
     return c;
   }
-  if (version != slot::kLayoutVersion) {
+  if (known == 0) {
     c.status = StorageResult::BadVersion;
     return c;
   }
-  if (payload != ParameterStore::kImageSize) {
+  if (payload != ParameterStore::image_size_of_layout(version)) {
     c.status = StorageResult::BadSize;
     return c;
   }
   c.header = SlotHeader{get_u32(in + 8), get_u32(in + 12), get_u32(in + 16), get_u32(in + 20)};
+  c.layout = version;
+  c.size = size;
   c.status = StorageResult::Ok;
   return c;
 }

@@ -17,6 +17,7 @@
 #include "firmware_protocol/codec/codec.h"
 #include "firmware_protocol/node/calibration_slot.h"
 #include "firmware_protocol/node/fault_history.h"
+#include "firmware_protocol/node/hand_calibration.h"
 #include "firmware_protocol/node/node_hardware.h"
 #include "firmware_protocol/node/parameter_store.h"
 
@@ -40,6 +41,11 @@ class Node {
 
   Node(Hw& hw, std::uint32_t serial) : hw_(hw), serial_(serial) {}
 
+  // For emulating firmware of an older protocol minor (version negotiation tests, armsim
+  // --firmware-minor): the Identity says so, and below minor 3 the node has no layout-2
+  // parameters and stores layout 1, as that firmware did. Call before boot.
+  void emulate_firmware_minor(std::uint8_t minor) { max_minor_ = minor < kProtocolMinor ? minor : kProtocolMinor; }
+
   // Power-on / NMT reset node: load parameters from the newest valid calibration slot, send the
   // boot-up heartbeat and Identity, enter PreOperational. No valid slot but a corrupt one latches
   // FaultCode::ParameterCrc (defaults in use); blank storage is a new board (defaults, no fault).
@@ -58,6 +64,8 @@ class Node {
   const FaultHistory& fault_history() const { return faults_; }
   std::uint8_t node_id() const { return node_id_; }
   std::uint8_t negotiated_minor() const { return negotiated_minor_; }
+  std::uint8_t max_minor() const { return max_minor_; }
+  std::uint16_t stored_layout() const { return stored_layout_; }  // of the booted slot; 0: none
   std::uint32_t tx_overflows() const { return tx_overflows_; }
   CalibrationStatus calibration_status() const { return cal_status_; }
   bool calibration_session_open() const { return session_open_; }
@@ -102,6 +110,8 @@ class Node {
   NodeState nmt_state_ = NodeState::Boot;
   std::uint8_t node_id_ = 1;
   std::uint8_t negotiated_minor_ = 0xFF;
+  std::uint8_t max_minor_ = kProtocolMinor;
+  std::uint16_t stored_layout_ = 0;
   bool enabled_ = false;
   std::uint64_t last_command_us_ = 0;
   CommandMode command_mode_ = CommandMode::MotorCurrent;
@@ -281,7 +291,7 @@ template <VESICA_NODE_HARDWARE Hw>
 void Node<Hw>::handle_hello(const Hello& m) {
   // Major must match; the minor is the highest both sides speak.
   if (m.protocol_major == kProtocolMajor) {
-    negotiated_minor_ = m.protocol_minor < kProtocolMinor ? m.protocol_minor : kProtocolMinor;
+    negotiated_minor_ = m.protocol_minor < max_minor_ ? m.protocol_minor : max_minor_;
   } else {
     negotiated_minor_ = 0xFF;
     enabled_ = false;
@@ -293,6 +303,15 @@ template <VESICA_NODE_HARDWARE Hw>
 void Node<Hw>::handle_parameter(const ParameterRequest& m) {
   ParameterResponse r{node_id_, m.op, false, m.type, m.index, 0};
   AbortCode abort = AbortCode::None;
+  const int slot_index = parameter_slot(m.index);
+  const bool older_firmware_lacks = max_minor_ < kLayout2Minor && slot_index >= 0 &&
+                                    parameter_layout(static_cast<std::size_t>(slot_index)) > 1;
+  if (older_firmware_lacks && (m.op == ParameterOp::Read || m.op == ParameterOp::Write)) {
+    r.aborted = true;
+    r.raw_value = static_cast<std::uint32_t>(AbortCode::NoSuchParameter);
+    queue(r);
+    return;
+  }
   switch (m.op) {
     case ParameterOp::Read: abort = params_.read(m.index, r.type, r.raw_value); break;
     case ParameterOp::Write:
@@ -495,8 +514,9 @@ void Node<Hw>::tick(std::uint64_t now_us) {
   }
   if (nmt_state_ != NodeState::Stopped && now_us >= next_aux_us_) {
     next_aux_us_ = now_us + 1000ull * params_.u32(param::kAuxPeriod_ms);
-    queue(AuxState{node_id_, aux_counter_++, s.pedal, s.estop_input, s.handle_button, clampf(s.roll_rad, -3.1416f, 3.1416f),
-                   clampf(s.jaw_rad, 0, 3.1416f), clampf(s.bus_V, 0, 100)});
+    const HandReading hand = calibrated_hand(params_, s);
+    queue(AuxState{node_id_, aux_counter_++, hand.pedal, s.estop_input, s.handle_button,
+                   clampf(hand.roll_rad, -3.1416f, 3.1416f), clampf(hand.jaw_rad, 0, 3.1416f), clampf(s.bus_V, 0, 100)});
     JointArray measured{};
     for (int j = 0; j < kJointCount; ++j) measured[j] = clampf(s.current[j], -30, 30);
     const float t = clampf(s.board_temperature_degC, -40, 125);
@@ -613,11 +633,13 @@ StorageResult Node<Hw>::load_parameters() {
     slot_status_[s] = StorageResult::BadMagic;
     slot_generation_[s] = 0;
     if (!hw_.storage_read(slot::offset(s), buf, slot::kSize)) continue;
-    const SlotCheck c = check_slot(buf, slot::kSize);
+    SlotCheck c = check_slot(buf, slot::kSize);
+    // Firmware before protocol 1.3 knew layout 1 only.
+    if (c.status == StorageResult::Ok && max_minor_ < kLayout2Minor && c.layout > 1) c.status = StorageResult::BadVersion;
     slot_status_[s] = c.status;
     if (c.status != StorageResult::Ok) continue;
     ParameterStore scratch;  // a slot counts as valid only if its image loads too
-    const StorageResult image = scratch.deserialize(buf + slot::kHeaderSize, ParameterStore::kImageSize);
+    const StorageResult image = scratch.deserialize(buf + slot::kHeaderSize, c.size - slot::kHeaderSize - 4);
     if (image != StorageResult::Ok) {
       slot_status_[s] = image == StorageResult::BadMagic ? StorageResult::BadCrc : image;
       continue;
@@ -626,20 +648,23 @@ StorageResult Node<Hw>::load_parameters() {
     headers[s] = c.header;
   }
   params_.restore_defaults();
+  stored_layout_ = 0;
   active_slot_ = choose_boot_slot(slot_status_, slot_generation_);
   StorageResult result = StorageResult::BadMagic;
   if (active_slot_ >= 0 && hw_.storage_read(slot::offset(active_slot_), buf, slot::kSize) &&
-      params_.deserialize(buf + slot::kHeaderSize, ParameterStore::kImageSize) == StorageResult::Ok) {
+      params_.deserialize(buf + slot::kHeaderSize, slot::kSize - slot::kHeaderSize, &stored_layout_) ==
+          StorageResult::Ok) {
     params_.set_internal(param::kCalibrationDate_s, headers[active_slot_].date_s);
     params_.set_internal(param::kCalibrationToolVersion, headers[active_slot_].tool_version);
     result = StorageResult::Ok;
   } else {
     active_slot_ = -1;
+    stored_layout_ = 0;
     params_.restore_defaults();
     // A board saved before protocol 1.1 holds one bare parameter image at offset 0: slot A, generation 0.
-    std::uint8_t legacy[ParameterStore::kImageSize];
+    std::uint8_t legacy[ParameterStore::kLayout1ImageSize];
     if (hw_.storage_read(0, legacy, sizeof legacy) && slot_detail::get_u32(legacy) == ParameterStore::kMagic) {
-      const StorageResult r = params_.deserialize(legacy, sizeof legacy);
+      const StorageResult r = params_.deserialize(legacy, sizeof legacy, &stored_layout_);
       slot_status_[0] = r;
       if (r == StorageResult::Ok) active_slot_ = 0;
       else params_.restore_defaults();
@@ -669,23 +694,26 @@ bool Node<Hw>::save_parameters() {
     if (slot_status_[s] == StorageResult::Ok && slot_generation_[s] > generation) generation = slot_generation_[s];
   const SlotHeader header{generation + 1, params_.u32(param::kCalibrationDate_s),
                           params_.u32(param::kCalibrationToolVersion), serial_};
+  const std::uint16_t layout = max_minor_ < kLayout2Minor ? 1 : ParameterStore::kLayoutVersion;
   std::uint8_t image[ParameterStore::kImageSize];
   std::uint8_t out[slot::kSize];
-  if (params_.serialize(image, sizeof image) == 0 || encode_slot(header, image, sizeof image, out, sizeof out) == 0)
-    return false;
-  const bool written = hw_.storage_write(slot::offset(target), out, slot::kSize);
+  const std::size_t image_size = params_.serialize(image, sizeof image, layout);
+  const std::size_t size = image_size == 0 ? 0 : encode_slot(header, image, image_size, out, sizeof out);
+  if (size == 0) return false;
+  const bool written = hw_.storage_write(slot::offset(target), out, size);
   // What the storage holds now decides, whatever the write reported.
   std::uint8_t back[slot::kSize];
-  const bool read = hw_.storage_read(slot::offset(target), back, slot::kSize);
+  const bool read = hw_.storage_read(slot::offset(target), back, size);
   bool same = read;
-  for (std::size_t i = 0; same && i < slot::kSize; ++i) same = back[i] == out[i];
+  for (std::size_t i = 0; same && i < size; ++i) same = back[i] == out[i];
   if (same) {
     slot_status_[target] = StorageResult::Ok;
     slot_generation_[target] = header.generation;
     active_slot_ = target;
+    stored_layout_ = layout;
   } else {
     // Untouched (still the older valid slot) or spoilt: report what is there.
-    const StorageResult now = read ? check_slot(back, slot::kSize).status : StorageResult::BadMagic;
+    const StorageResult now = read ? check_slot(back, size).status : StorageResult::BadMagic;
     if (now != StorageResult::Ok) {
       slot_status_[target] = now;
       slot_generation_[target] = 0;
@@ -698,6 +726,7 @@ bool Node<Hw>::save_parameters() {
 template <VESICA_NODE_HARDWARE Hw>
 void Node<Hw>::sync_slot_parameters() {
   params_.set_internal(param::kActiveSlot, active_slot_ < 0 ? slot::kNoSlot : static_cast<std::uint32_t>(active_slot_));
+  params_.set_internal(param::kStoredLayout, active_slot_ < 0 ? 0u : stored_layout_);
   for (int s = 0; s < slot::kCount; ++s) {
     params_.set_internal(static_cast<std::uint16_t>(param::kSlotStatus + s), static_cast<std::uint32_t>(slot_status_[s]));
     params_.set_internal(static_cast<std::uint16_t>(param::kSlotGeneration + s), slot_generation_[s]);
@@ -740,7 +769,7 @@ void Node<Hw>::send_heartbeat() {
 
 template <VESICA_NODE_HARDWARE Hw>
 void Node<Hw>::send_identity() {
-  queue(Identity{node_id_, kProtocolMajor, 0, kProtocolMinor, negotiated_minor_, serial_});
+  queue(Identity{node_id_, kProtocolMajor, 0, max_minor_, negotiated_minor_, serial_});
 }
 
 template <VESICA_NODE_HARDWARE Hw>

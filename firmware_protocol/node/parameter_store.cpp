@@ -92,40 +92,48 @@ std::uint32_t ParameterStore::u32(std::uint16_t index) const {
   return slot < 0 ? 0u : raw_[slot];
 }
 
-std::size_t ParameterStore::serialize(std::uint8_t* out, std::size_t capacity) const {
-  if (capacity < kImageSize) return 0;
+std::size_t ParameterStore::serialize(std::uint8_t* out, std::size_t capacity, std::uint16_t layout) const {
+  const std::size_t size = image_size_of_layout(layout);
+  if (size == 0 || capacity < size) return 0;
+  const std::size_t count = layout == 1 ? kLayout1ParameterCount : kParameterCount;
   put_u32(out, kMagic);
-  out[4] = static_cast<std::uint8_t>(kLayoutVersion);
-  out[5] = static_cast<std::uint8_t>(kLayoutVersion >> 8);
-  out[6] = static_cast<std::uint8_t>(kParameterCount);
-  out[7] = static_cast<std::uint8_t>(kParameterCount >> 8);
-  for (std::size_t i = 0; i < kParameterCount; ++i) {
+  out[4] = static_cast<std::uint8_t>(layout);
+  out[5] = static_cast<std::uint8_t>(layout >> 8);
+  out[6] = static_cast<std::uint8_t>(count);
+  out[7] = static_cast<std::uint8_t>(count >> 8);
+  for (std::size_t i = 0; i < count; ++i) {
     const ParameterSpec& s = kParameterSpecs[i];
     put_u32(out + 8 + 4 * i, s.persistent ? raw_[i] : default_raw(s));
   }
-  const std::size_t body = kImageSize - 4;
+  const std::size_t body = size - 4;
   put_u32(out + body, crc32(out, body));
-  return kImageSize;
+  return size;
 }
 
-StorageResult ParameterStore::deserialize(const std::uint8_t* in, std::size_t n) {
-  if (n < kImageSize) return StorageResult::BadSize;
+StorageResult ParameterStore::deserialize(const std::uint8_t* in, std::size_t n, std::uint16_t* layout) {
+  if (n < 8) return StorageResult::BadSize;
   if (get_u32(in) != kMagic) return StorageResult::BadMagic;
   const std::uint16_t version = static_cast<std::uint16_t>(in[4] | (in[5] << 8));
   const std::uint16_t count = static_cast<std::uint16_t>(in[6] | (in[7] << 8));
-  if (version != kLayoutVersion) return StorageResult::BadVersion;
-  if (count != kParameterCount) return StorageResult::BadSize;
-  const std::size_t body = kImageSize - 4;
+  const std::size_t size = image_size_of_layout(version);
+  if (size == 0) return StorageResult::BadVersion;
+  if (n < size || count != (version == 1 ? kLayout1ParameterCount : kParameterCount)) return StorageResult::BadSize;
+  const std::size_t body = size - 4;
   if (crc32(in, body) != get_u32(in + body)) return StorageResult::BadCrc;
   std::uint32_t loaded[kParameterCount];
   for (std::size_t i = 0; i < kParameterCount; ++i) {
     const ParameterSpec& s = kParameterSpecs[i];
+    if (i >= count) {
+      loaded[i] = s.persistent ? default_raw(s) : raw_[i];  // migrated: absent from the older layout
+      continue;
+    }
     loaded[i] = s.persistent ? get_u32(in + 8 + 4 * i) : raw_[i];
     // A valid CRC over an out-of-range value means a writer bug: refuse the whole image.
     if (s.persistent && s.access == ParameterAccess::ReadWrite && range_check(s, loaded[i]) != AbortCode::None)
       return StorageResult::BadCrc;
   }
   for (std::size_t i = 0; i < kParameterCount; ++i) raw_[i] = loaded[i];
+  if (layout) *layout = version;
   return StorageResult::Ok;
 }
 

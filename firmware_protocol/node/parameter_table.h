@@ -66,6 +66,16 @@ inline constexpr std::uint16_t kCalibrationToolVersion = 0x0121; // major << 16 
 inline constexpr std::uint16_t kActiveSlot = 0x0122;             // 0 A, 1 B, 255 none (defaults)
 inline constexpr std::uint16_t kSlotStatus = 0x0123;             // 0x0123 A, 0x0124 B: StorageResult
 inline constexpr std::uint16_t kSlotGeneration = 0x0125;         // 0x0125 A, 0x0126 B
+// Protocol minor 3, image layout 2: what the torque-constant check and the guided hand steps
+// measure, stored so that the node and the bridge use it (docs/protocol.md section 9).
+inline constexpr std::uint16_t kTorqueConstantCorrection = 0x00D0;  // real torque per node torque unit, per joint
+inline constexpr std::uint16_t kRollSensorOffset = 0x00D8;   // rad: what the roll sensor reads at the roll mark
+inline constexpr std::uint16_t kJawClosedCounts = 0x00D9;    // jaw ADC, handle fully closed
+inline constexpr std::uint16_t kJawOpenCounts = 0x00DA;      // jaw ADC, handle fully open (= closed: not measured)
+inline constexpr std::uint16_t kJawOpen_rad = 0x00DB;        // the handle's full opening (design)
+inline constexpr std::uint16_t kPedalReleasedCounts = 0x00DC;  // pedal ADC, released
+inline constexpr std::uint16_t kPedalPressedCounts = 0x00DD;   // pedal ADC at its stop (= released: not measured)
+inline constexpr std::uint16_t kStoredLayout = 0x0127;  // image layout of the booted slot: 0 none, 1, 2
 }  // namespace param
 
 #define VESICA_J3(base, name, unit, lo, hi, def0, def1, def2)                                  \
@@ -120,10 +130,31 @@ inline constexpr ParameterSpec kParameterSpecs[] = {
   {param::kSlotStatus + 1, "slot_status[B]", ParameterType::U32, "", 0, 4, 1, ParameterAccess::ReadOnly, false},
   {param::kSlotGeneration + 0, "slot_generation[A]", ParameterType::U32, "", 0, 4294967295.0, 0, ParameterAccess::ReadOnly, false},
   {param::kSlotGeneration + 1, "slot_generation[B]", ParameterType::U32, "", 0, 4294967295.0, 0, ParameterAccess::ReadOnly, false},
+  // ---- image layout 2 (protocol minor 3) from here on: appended, so that a layout-1 image is
+  // the first kLayout1ParameterCount entries and migrates by position. Defaults are neutral: a
+  // torque constant as the parameter says, the roll sensor as it reads, jaw and pedal as the board
+  // converts them (closed = open, released = pressed: not measured).
+  VESICA_J3(param::kTorqueConstantCorrection, "torque_constant_correction", "", 0.5, 2.0, 1.0, 1.0, 1.0),
+  {param::kRollSensorOffset, "roll_sensor_offset", ParameterType::F32, "rad", -3.1416, 3.1416, 0, ParameterAccess::ReadWrite, true},
+  {param::kJawClosedCounts, "jaw_closed_counts", ParameterType::U32, "", 0, 4095, 0, ParameterAccess::ReadWrite, true},
+  {param::kJawOpenCounts, "jaw_open_counts", ParameterType::U32, "", 0, 4095, 0, ParameterAccess::ReadWrite, true},
+  {param::kJawOpen_rad, "jaw_open_rad", ParameterType::F32, "rad", 0.05, 3.1416, 0.6, ParameterAccess::ReadWrite, true},
+  {param::kPedalReleasedCounts, "pedal_released_counts", ParameterType::U32, "", 0, 4095, 0, ParameterAccess::ReadWrite, true},
+  {param::kPedalPressedCounts, "pedal_pressed_counts", ParameterType::U32, "", 0, 4095, 0, ParameterAccess::ReadWrite, true},
+  {param::kStoredLayout, "stored_layout", ParameterType::U32, "", 0, 2, 0, ParameterAccess::ReadOnly, false},
 };
 #undef VESICA_J3
 
 inline constexpr std::size_t kParameterCount = sizeof(kParameterSpecs) / sizeof(kParameterSpecs[0]);
+
+// Image layout 1 (protocol 1.0 .. 1.2) held the table's first 70 parameters, in this order.
+inline constexpr std::size_t kLayout1ParameterCount = 70;
+static_assert(kParameterSpecs[kLayout1ParameterCount - 1].index == param::kSlotGeneration + 1,
+              "layout 1 ends with slot_generation[B]: new parameters are appended after it, never inserted");
+// The protocol minor that brought layout 2's parameters: a node below it has none of them.
+inline constexpr std::uint8_t kLayout2Minor = 3;
+// The image layout that first held kParameterSpecs[i].
+constexpr std::uint16_t parameter_layout(std::size_t i) { return i < kLayout1ParameterCount ? 1 : 2; }
 
 // Position of a parameter in kParameterSpecs, or -1.
 constexpr int parameter_slot(std::uint16_t index) {

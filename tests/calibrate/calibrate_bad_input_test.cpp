@@ -7,6 +7,7 @@
 
 #include "app/calibrate/exit_codes.h"
 #include "firmware_protocol/codec/codec.h"
+#include "firmware_protocol/node/calibration_slot.h"
 #include "firmware_protocol/transport/udp_transport.h"
 #include "tool_process.h"
 
@@ -155,11 +156,12 @@ TEST(CalibrateBadInput, AStoredImageWithABadCrcOrNotACalibrationChangesNothing) 
   const auto files = FilesUnder(dir);
   const std::string good = dir + "/images/serial-5E51CA01-gen-1.vcal";
   auto bytes = ReadBytes(good);
-  ASSERT_EQ(bytes.size(), 320u);
+  ASSERT_EQ(bytes.size(), fp::slot::kSize);  // image layout 2
 
   bytes[100] ^= 0x01;  // one bit in the parameter image
   const std::string corrupt = testing::FreshDir("bad-image-files") + "-corrupt.vcal";
-  std::ofstream(corrupt, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), 320);
+  std::ofstream(corrupt, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                               static_cast<std::streamsize>(bytes.size()));
   auto run = RunTool({"--emulated", "5", "--dir", dir, "restore", "1", "--file", corrupt});
   EXPECT_EQ(run.exit_code, kExitStorage);
   EXPECT_NE(run.err.find(corrupt + ": corrupt (bad CRC); nothing was written"), std::string::npos) << run.err;
@@ -175,7 +177,7 @@ TEST(CalibrateBadInput, AStoredImageWithABadCrcOrNotACalibrationChangesNothing) 
   std::ofstream(truncated, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), 200);
   run = RunTool({"--emulated", "5", "--dir", dir, "restore", "1", "--file", truncated});
   EXPECT_EQ(run.exit_code, kExitStorage);
-  EXPECT_NE(run.err.find("(200 bytes, a slot has 320)"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("(200 bytes, a slot has 360 (layout 2) or 320 (layout 1))"), std::string::npos) << run.err;
 
   run = RunTool({"--emulated", "5", "--dir", dir, "restore", "1", "--file", corrupt + ".missing"});
   EXPECT_EQ(run.exit_code, kExitIo);

@@ -99,8 +99,8 @@ INSTANTIATE_TEST_SUITE_P(Seeds, CalibrateGroundTruth, ::testing::Values(3u, 11u,
 
 // The torque-constant check on its own, after a whole calibration (the emulated arm's reference
 // load fixture is clamped on by the tool): each joint's ratio within 1 % of the truth, every
-// check passed, nothing written.
-TEST(CalibrateTorqueConstant, TheCheckAloneFindsEachMotorsTorqueConstantAndWritesNothing) {
+// check passed, and (protocol 1.3) the ratios stored as the torque-constant corrections.
+TEST(CalibrateTorqueConstant, TheCheckAloneFindsEachMotorsTorqueConstantAndStoresTheCorrection) {
   constexpr std::uint64_t kSeed = 8;
   const std::string dir = testing::FreshDir("torque-constant");
   const std::vector<std::string> common = {"--emulated", std::to_string(kSeed), "--dir", dir, "--json", "--yes",
@@ -114,7 +114,7 @@ TEST(CalibrateTorqueConstant, TheCheckAloneFindsEachMotorsTorqueConstantAndWrite
   const auto run = RunTool(args);
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
   const nlohmann::json r = run.json();
-  EXPECT_FALSE(r["saved"].get<bool>());
+  EXPECT_TRUE(r["saved"].get<bool>());
   ASSERT_EQ(r["checks"].size(), 3u);
   for (const auto& c : r["checks"]) EXPECT_TRUE(c["pass"].get<bool>()) << c.dump();
   const emu::ArmGroundTruth t = emu::RandomArm(kSeed);
@@ -124,7 +124,15 @@ TEST(CalibrateTorqueConstant, TheCheckAloneFindsEachMotorsTorqueConstantAndWrite
     EXPECT_NEAR(r["measured"]["joints"][kJoint[j]]["torque_constant_ratio"].get<double>(), truth, 0.01 * truth);
     EXPECT_EQ(r["measured"]["joints"][kJoint[j]]["load_holds"].size(), 5u);
   }
-  EXPECT_EQ(testing::ReadBytes(dir + "/emulated/seed-" + std::to_string(kSeed) + "-arm-1.flash"), flash_before);
+  EXPECT_NE(testing::ReadBytes(dir + "/emulated/seed-" + std::to_string(kSeed) + "-arm-1.flash"), flash_before);
+  args = common;
+  args.insert(args.end(), {"info", "1"});
+  const auto info = RunTool(args);
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  for (int j = 0; j < 3; ++j)
+    EXPECT_NEAR(info.json()["calibration"][kJoint[j]]["torque_constant_correction"].get<double>(),
+                r["measured"]["joints"][kJoint[j]]["torque_constant_ratio"].get<double>(), 1e-6);
+  EXPECT_EQ(info.json()["node"]["image_layout"], 2);
 }
 
 }  // namespace

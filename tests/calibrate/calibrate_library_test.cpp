@@ -166,7 +166,7 @@ TEST(CalibrateLibrary, TheGuidedHandStepsPromptWithALiveValueAndRetry) {
   EXPECT_EQ(hand["pedal"]["released_raw"], t.pedal_up_raw());
   EXPECT_EQ(hand["pedal"]["pressed_raw"], t.pedal_down_raw());
   EXPECT_EQ(ui.last_live, t.pedal_down_raw());  // the live value was the sensor's
-  EXPECT_FALSE(o.json["saved"].get<bool>());    // reported, not stored
+  EXPECT_TRUE(o.json["saved"].get<bool>());     // reported and (protocol 1.3) stored
 
   // A panel without GuideHand declines: the step stops, saying why.
   NoHandUi plain;

@@ -27,7 +27,7 @@ double DriveYaw(CalibrationRig& rig) {
 
 TEST(SessionWatchdogTest, ACutBusStopsTheMotionWithinTheSessionWatchdog) {
   CalibrationRig rig(5);
-  ASSERT_EQ(rig.link->Connect().negotiated_minor, 2);
+  ASSERT_GE(rig.link->Connect().negotiated_minor, 2);  // 1.2 or later
   const auto& node = rig.emulator->node();
   const float stored_offset = node.parameters().f32(fp::param::kPositionOffset);
   rig.link->WriteF32(fp::param::kPositionOffset, stored_offset + 0.5f);  // unsaved, in the session below
@@ -64,7 +64,7 @@ TEST(SessionWatchdogTest, ACutBusStopsTheMotionWithinTheSessionWatchdog) {
 
 TEST(SessionWatchdogTest, SilencesShorterThanTheWatchdogKeepTheSessionOpen) {
   CalibrationRig rig(6);
-  ASSERT_EQ(rig.link->Connect().negotiated_minor, 2);
+  ASSERT_GE(rig.link->Connect().negotiated_minor, 2);  // 1.2 or later
   DriveYaw(rig);
   // A stalled host: no command for 200 ms, then commands again.
   rig.RunUntil(rig.clock.now() + std::chrono::milliseconds(200));
