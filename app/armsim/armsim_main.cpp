@@ -17,6 +17,7 @@
 #include <spdlog/spdlog.h>
 
 #include "app/armsim/armsim_transport.h"
+#include "app/armsim/fixture_control.h"
 #include "app/armsim/hand_trajectory.h"
 #include "device/input/input_recording.h"
 #include "firmware_protocol/emulator/arm_emulator.h"
@@ -91,6 +92,16 @@ int main(int argc, char** argv) {
   app.add_flag("--uncalibrated", uncalibrated,
                "the nominal arm with a blank flash, as a board nobody calibrated: the trainer's bridge refuses to "
                "enable it until vesica-calibrate has calibrated it (default: it left the factory calibrated)");
+  bool fixture_control = false;
+  app.add_flag("--fixture-control", fixture_control,
+               "take what a technician does by hand from standard input, one command a line: 'reference-load "
+               "on|off', 'hand roll=RAD jaw=RAD pedal=0..1', 'let-go' (each answered 'ok ...' on standard output), so "
+               "that vesica-calibrate's torque-constant check and guided hand steps run over UDP");
+  int firmware_minor = vesica::fp::kProtocolMinor;
+  app.add_option("--firmware-minor", firmware_minor,
+                 "emulate firmware of this protocol minor (1.x): below 3 it stores image layout 1 and has no "
+                 "torque-constant correction or hand-sensor calibration")
+      ->check(CLI::Range(1, static_cast<int>(vesica::fp::kProtocolMinor)));
   CLI11_PARSE(app, argc, argv);
   if (local_port->count() == 0) udp.local_port = 20000 + 2 * (node_id - 1);
   if (remote_port->count() == 0) udp.remote_port = udp.local_port + 1;
@@ -162,7 +173,12 @@ int main(int argc, char** argv) {
     hand_text = "of random arm " + std::to_string(random_arm) + " not holding it";
   }
   emu::ArmEmulator arm(*transport, plant, q0, config);
+  if (firmware_minor < vesica::fp::kProtocolMinor) {
+    arm.node().emulate_firmware_minor(static_cast<std::uint8_t>(firmware_minor));
+    arm.Reboot();  // boots its flash as that firmware would
+  }
   arm.plant().SetHandScript(script);
+  vesica::app::FixtureControl fixture;
   spdlog::info("vesica-armsim: node {} listening on UDP {} -> {}:{}, the hand {}", arm.node().node_id(),
                udp.local_port, udp.remote_host, udp.remote_port, hand_text);
 
@@ -172,6 +188,7 @@ int main(int argc, char** argv) {
     const auto now = transport->now();
     if (duration_s > 0 && now - start >= std::chrono::duration<double>(duration_s)) break;
     arm.RunUntil(now);
+    if (fixture_control) fixture.Poll(arm.plant());
     if (now >= next_log) {
       next_log = now + std::chrono::seconds(1);
       const auto f = arm.plant().ForceOnHand();
