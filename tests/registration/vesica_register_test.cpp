@@ -14,6 +14,8 @@
 
 #include "app/mesh_io/mesh_io.h"
 #include "app/patient/patient_files.h"
+#include "app/register/control_point_csv.h"
+#include "app/register/displacement_csv.h"
 #include "physics/mesh/primitives.h"
 #include "tests/registration/registration_liver.h"
 
@@ -112,6 +114,14 @@ TEST_F(VesicaRegisterTest, WritesTheSeriesTheFieldAndTheResiduals) {
   std::stringstream text;
   text << pvd.rdbuf();
   EXPECT_NE(text.str().find("file=\"registered_0002.vtu\""), std::string::npos);
+
+  // displacement.csv read back as a series replays the registered frames (the patient's source).
+  const physics::DisplacementSeries series = app::registration::ReadDisplacementSeries(out / "displacement.csv", mesh_);
+  const auto bound = series.Bind({mesh_.vertices.row(0).transpose()});  // node 0 at rest
+  const Eigen::Vector3d node0 = (last.vertices.row(0) - mesh_.vertices.row(0)).transpose();
+  EXPECT_TRUE(series.Sample(bound, 2 * 0.4175)[0].isApprox(node0, 1e-6));
+  EXPECT_THROW(app::registration::ReadDisplacementSeries(out / "residuals.csv", mesh_),
+               app::registration::RegisterInputError);
 
   // --frames picks a range.
   const ToolRun some = RunTool((dir_ / "box.vtu").string() + " " + (dir_ / "points.csv").string() + " --out " +
