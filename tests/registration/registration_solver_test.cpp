@@ -132,15 +132,15 @@ TEST(RegistrationSolverTest, NormalCheckPreventsBindingToTheWrongSide) {
   EXPECT_LT(error_with, 1e-3);
 }
 
-// The seed's liver "re-orients as it settles": the outline tracked on a liver turned 25 degrees
+// The seed's liver "re-orients as it settles": the outline tracked on a liver turned 90 degrees
 // about the anterior-posterior axis and moved 10 mm, the mesh starting at rest. Every step stays
-// accepted, the body's best-fit rotation (which turns the compliance, R C0 R^T) finds the turn.
-// (With R = I, the unturned rest compliance, this case converges as well: the per-step correction
-// and re-pairing absorb W's error here; docs/registration.md.)
+// accepted and the body's best-fit rotation, which turns the compliance (R C0 R^T), finds the turn.
+// With R = I (the rest compliance unturned) the same run ends 13.8 mm off on average (measured;
+// at 45-60 degrees both converge): the warped compliance is what keeps W right.
 TEST(RegistrationSolverTest, ALargeRotationIsFollowedStably) {
   const TetrahedralMesh& mesh = RegistrationLiverMesh();
   const Eigen::Vector3d centre = mesh.vertices.colwise().mean().transpose();
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(25.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(90.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
   Vertices truth = mesh.vertices;
   for (Eigen::Index i = 0; i < truth.rows(); ++i)
     truth.row(i) =
@@ -153,9 +153,9 @@ TEST(RegistrationSolverTest, ALargeRotationIsFollowedStably) {
   }
   const Eigen::AngleAxisd found(solver.last_rotation());
   const test::SurfaceError error = test::SymmetricSurfaceError(mesh, solver.CurrentPositions(), truth);
-  std::printf("25 deg turn: registered rotation %.1f deg, surface error mean %.2f max %.2f mm\n",
+  std::printf("90 deg turn: registered rotation %.1f deg, surface error mean %.2f max %.2f mm\n",
               found.angle() * 180.0 / M_PI, 1e3 * error.mean_m, 1e3 * error.max_m);
-  EXPECT_NEAR(found.angle() * 180.0 / M_PI, 25.0, 2.0);
+  EXPECT_NEAR(found.angle() * 180.0 / M_PI, 90.0, 2.0);
   EXPECT_LT(error.mean_m, 1e-3);
 }
 
