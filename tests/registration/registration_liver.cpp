@@ -165,11 +165,12 @@ SurfaceError SymmetricSurfaceError(const physics::TetrahedralMesh& mesh, const V
   int count = 0;
   for (const Vertices* from : {&a, &b}) {
     const Vertices& to = from == &a ? b : a;
+    const physics::SurfaceSnapshot snapshot(surface, to);
     for (Eigen::Index s = 0; s < boundary.surface_to_volume.size(); ++s) {
       physics::ControlPoint p;
       p.p_W = from->row(boundary.surface_to_volume[s]).transpose();
       p.inward_normal_W = Eigen::Vector3d::UnitX();
-      const auto pairing = physics::PairControlPoint(surface, to, p, options);
+      const auto pairing = physics::PairControlPoint(snapshot, p, options);
       const double d = pairing ? pairing->distance_m : 1.0;
       sum += d;
       e.max_m = std::max(e.max_m, d);
