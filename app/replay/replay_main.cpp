@@ -1,7 +1,10 @@
 // vesica-replay: runs a recorded two-handed session through the dissection scene without a
 // window and prints the trainee's metrics; optionally writes a PNG sequence of the laparoscope
-// view (needs an X display: run under xvfb-run on a headless machine).
+// view (needs an X display: run under xvfb-run on a headless machine). A recorded needle biopsy
+// (a stylus recording, docs/omni.md) runs through the biopsy session on the breathing patient
+// instead and prints the biopsy's metrics; the file's first line says which procedure it is.
 //   vesica-replay [-s SCENARIO] RECORDING [--png-dir DIR --png-every-s 0.5]
+//   vesica-replay RECORDING [--procedure needle_biopsy] [--patient-dir data/patients]
 // The recording's "# scenario:" line must name the scenario given (--any-scenario overrides).
 // Progress goes to stderr: a line redrawn in place on a terminal, else (logs, CI) a line at each
 // tenth of a replay of more than kPlainProgressMinSteps steps.
@@ -14,13 +17,19 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "app/biopsy/biopsy_patient.h"
+#include "app/biopsy/biopsy_replay.h"
+#include "app/records/procedure.h"
 #include "app/render/laparoscope_view.h"
 #include "app/render/scene_meshes.h"
 #include "app/replay/session_replay.h"
@@ -29,6 +38,7 @@
 #include "app/session/dissection_setup.h"
 #include "device/input/input_recording.h"
 #include "device/input/recording_error.h"
+#include "device/stylus/stylus_recording.h"
 #include "physics/scene/dissection_settings.h"
 
 namespace {
@@ -88,6 +98,51 @@ class ReplayProgress {
   std::chrono::steady_clock::time_point last_drawn_{};
 };
 
+// The procedure a recording is of, from its first line; nullopt when it is neither format.
+std::optional<vesica::app::Procedure> RecordedProcedure(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string first;
+  std::getline(in, first);
+  if (first == vesica::device::kStylusRecordingMagic) return vesica::app::Procedure::kNeedleBiopsy;
+  if (first == vesica::device::kRecordingMagic) return vesica::app::Procedure::kCholecystectomy;
+  return std::nullopt;
+}
+
+int ReplayNeedleBiopsy(const std::string& recording_path, const std::string& patient_dir, ProgressStyle style) {
+  namespace biopsy = vesica::app::biopsy;
+  const auto recording = vesica::device::ReadStylusRecording(recording_path);
+  const auto patient = biopsy::LoadCommittedBiopsyPatient(patient_dir);
+  const double span_s = recording.samples.back().time_s - recording.samples.front().time_s;
+  spdlog::info("needle biopsy: patient {}, recording {:.2f} s ({} samples)", patient_dir, span_s,
+               recording.samples.size());
+  const long ticks = std::lround(span_s / 0.001) + 1;
+  ReplayProgress progress(style, ticks / 5, span_s);  // counted in 5 ms steps, as a dissection's
+  const biopsy::BiopsyReplayResult r = biopsy::ReplayBiopsy(
+      patient, recording, {}, 0.001, [&](long tick, long) { progress.Update(tick / 5, static_cast<double>(tick) * 1e-3); });
+  progress.Finish();
+  const vesica::app::SessionMetrics& m = r.metrics;
+  std::printf("procedure             needle biopsy\n");
+  std::printf("session time          %.3f s (%ld haptic ticks)\n", r.duration_s, r.ticks);
+  if (m.biopsy_sampled) {
+    const auto& sample = *r.needle_metrics.sample;
+    std::printf("time to sample        %.3f s\n", m.time_to_sample_s);
+    std::printf("sample to tumour      %.2f mm: %s\n", m.sample_distance_m * 1e3,
+                std::string(vesica::physics::PrecisionName(sample.precision)).c_str());
+  } else {
+    std::printf("time to sample        - (no sample taken)\n");
+  }
+  std::printf("insertion attempts    %d\n", m.insertion_attempts);
+  std::printf("no-go crossings       %d", m.nogo_crossings);
+  for (int k = 0; k < vesica::physics::kNoGoKinds; ++k) {
+    const auto kind = static_cast<vesica::physics::NoGo>(k);
+    if (r.needle_metrics.crossings(kind) > 0)
+      std::printf(" (%s %d)", std::string(vesica::physics::NoGoName(kind)).c_str(), r.needle_metrics.crossings(kind));
+  }
+  std::printf("\nmax force             %.3f N (mean inside the body %.3f N)\n", m.max_force_N, m.mean_force_N);
+  std::printf("success               %s\n", m.success ? "yes" : "no");
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -121,9 +176,29 @@ int main(int argc, char** argv) {
                  "than 10 s), lines (a line each tenth), none")
       ->check(CLI::IsMember({"auto", "lines", "none"}))
       ->capture_default_str();
+  std::string procedure = "auto";
+  cli.add_option("--procedure", procedure,
+                 "the procedure the recording must be of: auto (from its first line), cholecystectomy, needle_biopsy")
+      ->check(CLI::IsMember({"auto", "cholecystectomy", "needle_biopsy"}))
+      ->capture_default_str();
+  std::string patient_dir = std::string(VESICA_DATA_DIR) + "/patients";
+  cli.add_option("--patient-dir", patient_dir, "a needle biopsy's patient (the synthetic patient's files)")
+      ->capture_default_str();
   CLI11_PARSE(cli, argc, argv);
 
   try {
+    const auto recorded = RecordedProcedure(recording_path);
+    if (recorded && procedure != "auto" && procedure != vesica::app::ProcedureKey(*recorded)) {
+      spdlog::error("{}: is a recording of a {}, not of a {} (--procedure {})", recording_path,
+                    vesica::app::ProcedureKey(*recorded), procedure, procedure);
+      return 2;
+    }
+    if (recorded == vesica::app::Procedure::kNeedleBiopsy) {
+      const ProgressStyle style = progress == "lines"  ? ProgressStyle::kLines
+                                  : progress == "none" ? ProgressStyle::kNone
+                                                       : ProgressStyle::kAuto;
+      return ReplayNeedleBiopsy(recording_path, patient_dir, style);
+    }
     vesica::device::ReplayInput input(vesica::device::ReadInputRecording(recording_path));
     try {  // refused before anything is built: the span alone decides
       vesica::app::ReplayStepCount(input.duration_s(), vesica::physics::DissectionSettings{}.time_step_s);

@@ -53,6 +53,15 @@ int main(int argc, char** argv) {
   cli.add_option("--recordings-dir", recordings_dir,
                  "where each session's input is saved ('default' = next to the records database, 'none')")
       ->capture_default_str();
+  std::string procedure = "cholecystectomy";
+  cli.add_option("--procedure", procedure, "the procedure to start in (Session > Procedure switches at run time)")
+      ->check(CLI::IsMember({"cholecystectomy", "needle_biopsy"}))
+      ->capture_default_str();
+  cli.add_option("--omni-udp-port", options.omni_udp_port,
+                 "needle mode: the Omni emulator's port (vesica-omnisim --port P; it sends poses to P + 1); "
+                 "default: the keyboard and mouse drive the needle")
+      ->check(CLI::Range(1, 65534));
+  cli.add_option("--patient-dir", options.patient_dir, "needle mode: the biopsy patient's files (default data/patients)");
   cli.add_option("--arms-udp-base-port", options.arms_udp_base_port,
                  "emulated arms: vesica-armsim node n listens on this port + 2(n-1)")
       ->capture_default_str()
@@ -114,18 +123,23 @@ int main(int argc, char** argv) {
   vesica::app::QuitOnTerminationSignals(app);
   vesica::app::TrainerApp trainer(options, QSize(width, height));
   if (!trainer.Open(scenario_path)) return 2;  // the error is logged
+  if (procedure == "needle_biopsy" && !trainer.OpenNeedleBiopsy()) return 2;
   if (quit_after_ms > 0) {
     QTimer::singleShot(quit_after_ms, &app, [&] {
-      vesica::app::TrainerWindow& window = *trainer.window();
-      if (!grab.empty() && !window.centralWidget()->grab().save(QString::fromStdString(grab)))
-        spdlog::error("could not save {}", grab);
-      if (!grab_window.empty() && !window.grab().save(QString::fromStdString(grab_window)))
-        spdlog::error("could not save {}", grab_window);
+      QMainWindow* window = trainer.window() ? static_cast<QMainWindow*>(trainer.window())
+                                             : static_cast<QMainWindow*>(trainer.needle_window());
+      if (window != nullptr) {
+        if (!grab.empty() && !window->centralWidget()->grab().save(QString::fromStdString(grab)))
+          spdlog::error("could not save {}", grab);
+        if (!grab_window.empty() && !window->grab().save(QString::fromStdString(grab_window)))
+          spdlog::error("could not save {}", grab_window);
+      }
       app.quit();
     });
   }
   const int status = app.exec();
   trainer.Shutdown();  // SIGTERM, Quit or --quit-after-ms mid-session: stored as unfinished
-  spdlog::info("loop rates ({}x{} window):\n{}", width, height, trainer.window()->LoopRatesSummary());
+  if (trainer.window() != nullptr)
+    spdlog::info("loop rates ({}x{} window):\n{}", width, height, trainer.window()->LoopRatesSummary());
   return status;
 }

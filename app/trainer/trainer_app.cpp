@@ -13,6 +13,8 @@
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario_loader.h"
 #include "app/session/dissection_setup.h"
+#include "device/stylus/keyboard_stylus.h"
+#include "device/stylus/udp_stylus.h"
 
 namespace vesica::app {
 
@@ -36,6 +38,10 @@ bool TrainerApp::Open(const std::filesystem::path& scenario_path) {
     // The old session ends and is stored before the new one starts, so the two never overlap in
     // the records and the old one's physics threads are gone.
     if (window_) window_->EndAndStoreSession();
+    if (needle_window_) {  // back from the needle mode: the stylus gets zero force and is released
+      needle_window_->EndAndStoreSession();
+      needle_window_.reset();
+    }
     next = std::make_unique<TrainerWindow>(scenario, std::move(view), std::move(model), options_);
   } catch (const std::exception& e) {
     last_error_ = e.what();
@@ -45,14 +51,78 @@ bool TrainerApp::Open(const std::filesystem::path& scenario_path) {
   }
   last_error_.clear();
   options_.replay_file.clear();
-  // Called from the old window's menu: replace it once that call has returned.
-  next->SetScenarioOpener(
-      [this](const std::filesystem::path& path) { QTimer::singleShot(0, &deferred_, [this, path] { Open(path); }); });
+  scenario_path_ = scenario_path;
+  ConnectOpeners(*next);
   next->resize(window_size_);
   if (window_) next->move(window_->pos());
   window_ = std::move(next);
   window_->show();
   if (!pending_checked_) StorePendingSessionsAtStart();
+  return true;
+}
+
+void TrainerApp::ConnectOpeners(TrainerWindow& window) {
+  // Called from the old window's menu: replace it once that call has returned.
+  window.SetScenarioOpener(
+      [this](const std::filesystem::path& path) { QTimer::singleShot(0, &deferred_, [this, path] { Open(path); }); });
+  window.SetNeedleBiopsyOpener([this] { QTimer::singleShot(0, &deferred_, [this] { OpenNeedleBiopsy(); }); });
+}
+
+bool TrainerApp::OpenNeedleBiopsy() {
+  std::unique_ptr<needle_mode::NeedleWindow> next;
+  try {
+    if (!biopsy_patient_) {
+      const std::filesystem::path dir =
+          options_.patient_dir.empty() ? std::filesystem::path(VESICA_DATA_DIR) / "patients" : options_.patient_dir;
+      spdlog::info("loading the biopsy patient from {} and meshing its organs", dir.string());
+      auto loaded = biopsy::LoadCommittedBiopsyPatient(dir);
+      biopsy_surfaces_ = patient::MeshPatient(loaded->volume.labels);
+      biopsy_patient_ = std::move(loaded);
+    }
+    std::shared_ptr<device::StylusDevice> stylus;
+    std::function<void()> servo;
+    if (options_.omni_udp_port > 0) {
+      device::UdpStylusConfig config;
+      config.device = {"127.0.0.1", static_cast<std::uint16_t>(options_.omni_udp_port)};
+      config.local = {"127.0.0.1", static_cast<std::uint16_t>(options_.omni_udp_port + 1)};
+      auto udp = std::make_shared<device::UdpStylus>(config);
+      if (udp->Open() == device::DeviceStatus::kTransportError)
+        throw std::runtime_error("Omni emulator on UDP port " + std::to_string(options_.omni_udp_port + 1) + ": " +
+                                 udp->last_error());
+      servo = [udp] { udp->Tick(); };
+      stylus = udp;
+    } else {
+      const Eigen::Vector3d tumour = biopsy_patient_->model->liver.tumour_centre_m;
+      auto keyboard = std::make_shared<device::KeyboardStylus>(
+          biopsy::StartingStylus(biopsy::PlacementAtRightSide(tumour), tumour));
+      keyboard->Open();
+      stylus = keyboard;
+    }
+    // The arms get zero force and are released (the window's arm bridge closes them) before the
+    // stylus takes over; the cholecystectomy is stored first (unfinished when it had begun).
+    if (window_) {
+      window_->StoreUnfinishedSession();
+      window_.reset();
+    }
+    needle_mode::NeedleModeOptions options;
+    options.trainee_id = options_.trainee_id;
+    options.station = options_.station;
+    options.records_location = options_.records_location;
+    options.saver = options_.saver;
+    next = std::make_unique<needle_mode::NeedleWindow>(biopsy_patient_, biopsy_surfaces_, stylus, servo, options);
+  } catch (const std::exception& e) {
+    last_error_ = e.what();
+    spdlog::error("needle biopsy: {}", last_error_);
+    if (window_) window_->ShowError("needle biopsy: " + last_error_);
+    return false;
+  }
+  last_error_.clear();
+  next->SetProcedureSwitcher([this] {
+    QTimer::singleShot(0, &deferred_, [this] { Open(scenario_path_.empty() ? DefaultScenarioPath() : scenario_path_); });
+  });
+  next->resize(window_size_);
+  needle_window_ = std::move(next);
+  needle_window_->show();
   return true;
 }
 
@@ -82,6 +152,7 @@ void TrainerApp::StorePendingSessionsAtStart() {
 
 void TrainerApp::Shutdown() {
   if (window_) window_->StoreUnfinishedSession();
+  if (needle_window_) needle_window_->EndAndStoreSession();
 }
 
 }  // namespace vesica::app

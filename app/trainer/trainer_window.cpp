@@ -89,6 +89,14 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
   });
   open_scenario_action_->setObjectName("open_scenario");
   open_scenario_action_->setEnabled(false);
+  QMenu* procedure = session->addMenu("P&rocedure");
+  QAction* cholecystectomy = procedure->addAction("&Laparoscopic cholecystectomy");
+  cholecystectomy->setCheckable(true);
+  cholecystectomy->setChecked(true);
+  cholecystectomy->setEnabled(false);
+  needle_biopsy_action_ = procedure->addAction("&Needle biopsy", [this] { RequestNeedleBiopsy(); });
+  needle_biopsy_action_->setObjectName("procedure_needle_biopsy");
+  needle_biopsy_action_->setEnabled(false);
   QAction* clear_faults = session->addAction("&Clear arm faults", [this] {
     if (arms_) arms_->ResetFaults();
   });
@@ -286,6 +294,17 @@ void TrainerWindow::ResetSession() {
 void TrainerWindow::SetScenarioOpener(std::function<void(const std::filesystem::path&)> open) {
   open_scenario_ = std::move(open);
   open_scenario_action_->setEnabled(static_cast<bool>(open_scenario_));
+}
+
+void TrainerWindow::SetNeedleBiopsyOpener(std::function<void()> open) {
+  open_needle_biopsy_ = std::move(open);
+  needle_biopsy_action_->setEnabled(static_cast<bool>(open_needle_biopsy_));
+}
+
+bool TrainerWindow::RequestNeedleBiopsy() {
+  if (!open_needle_biopsy_) return false;
+  open_needle_biopsy_();
+  return true;
 }
 
 bool TrainerWindow::RequestScenario(const std::filesystem::path& scenario_path) {

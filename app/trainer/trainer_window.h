@@ -38,6 +38,10 @@ struct TrainerOptions {
   /// Emulated arms (vesica-armsim over UDP): node n listens on this + 2(n-1) (ArmBridgeOptions).
   int arms_udp_base_port = 20000;
   SaverOptions saver;                    ///< retries of a locked or unreachable database
+  /// The needle mode's stylus: the Omni emulator (vesica-omnisim --port P) sends poses to P + 1
+  /// and takes forces on P; 0: the keyboard and mouse drive the needle.
+  int omni_udp_port = 0;
+  std::filesystem::path patient_dir;     ///< the biopsy patient's files; empty: data/patients
 };
 
 class TrainerWindow : public QMainWindow {
@@ -74,6 +78,11 @@ class TrainerWindow : public QMainWindow {
   /// What Session > Open scenario... does once the file is chosen: hands it to the opener.
   /// Returns false without an opener.
   bool RequestScenario(const std::filesystem::path& scenario_path);
+  /// Session > Procedure > Needle biopsy calls `open` (TrainerApp ends and stores this session,
+  /// releases the arms, and opens the needle mode). Without an opener the action is disabled.
+  void SetNeedleBiopsyOpener(std::function<void()> open);
+  /// What the menu item does: hands over to the opener. False without one.
+  bool RequestNeedleBiopsy();
   /// Shows an error in the status bar and keeps it as last_error().
   void ShowError(const std::string& message);
   const Scenario& scenario() const { return scenario_; }
@@ -135,6 +144,8 @@ class TrainerWindow : public QMainWindow {
   int session_number_ = 0;  // RunnerStatus::session of the session this window shows
   std::function<void(const std::filesystem::path&)> open_scenario_;
   QAction* open_scenario_action_ = nullptr;
+  std::function<void()> open_needle_biopsy_;
+  QAction* needle_biopsy_action_ = nullptr;
   std::string last_error_;
   std::int64_t started_unix_s_ = 0;
 };
