@@ -33,6 +33,7 @@ BiopsySession::BiopsySession(std::shared_ptr<const BiopsyPatient> patient, Biops
   if (settings_.place_stylus_at_tumour)
     settings_.placement = PlacementAtRightSide(patient_->model->liver.tumour_centre_m);
   breathing_.SetRespiration(settings_.respiration);
+  if (settings_.liver_motion) breathing_.DriveLiver(settings_.liver_motion);
   breathing_.Update(0.0);
   needle_.SetPatient(breathing_.snapshot(), 0.0);
   next_patient_update_s_ = settings_.patient_period_s;

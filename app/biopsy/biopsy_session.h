@@ -25,6 +25,10 @@ struct BiopsySessionSettings {
   double patient_period_s = 0.02;      ///< > 0: a respiration update every 20 ms (the seed's 20 Hz graphics ran 50 ms)
   bool place_stylus_at_tumour = true;  ///< placement from the tumour (PlacementAtRightSide); else `placement`
   StylusPlacement placement;
+  /// A measured breathing for the liver (issue 35: a registration result through
+  /// physics::MakePointMotion, LoadLiverMotion): it moves the liver instead of ChainMail. Empty:
+  /// ChainMail, as the seed.
+  physics::BreathingPatient::LiverMotion liver_motion;
 };
 
 /// Throws std::invalid_argument naming the field.

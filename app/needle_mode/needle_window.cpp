@@ -159,6 +159,7 @@ void NeedleWindow::StartRunner() {
   biopsy::BiopsySessionSettings settings;
   settings.respiration = breathing_->settings();
   settings.needle.max_force_N = stylus_->Capabilities().max_force_N;
+  settings.liver_motion = options_.liver_motion;
   runner_ = std::make_unique<biopsy::BiopsyRunner>(patient_, stylus_, settings, 0.001, servo_);
   if (breathing_->holding()) runner_->HoldBreath();
   started_unix_s_ = NowUnix();

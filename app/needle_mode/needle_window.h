@@ -35,7 +35,8 @@ struct NeedleModeOptions {
   std::string station = "vesica";
   std::string records_location;  ///< SessionStore location; empty: not stored
   SaverOptions saver;
-  double slice_period_s = 0.1;  ///< the CT images are resliced this often (10 Hz)
+  double slice_period_s = 0.1;                          ///< the CT images are resliced this often (10 Hz)
+  physics::BreathingPatient::LiverMotion liver_motion;  ///< a registered breathing (issue 35); empty: ChainMail
 };
 
 class NeedleWindow : public QMainWindow {

@@ -29,6 +29,7 @@
 
 #include "app/biopsy/biopsy_patient.h"
 #include "app/biopsy/biopsy_replay.h"
+#include "app/biopsy/liver_motion.h"
 #include "app/records/procedure.h"
 #include "app/render/laparoscope_view.h"
 #include "app/render/scene_meshes.h"
@@ -108,17 +109,23 @@ std::optional<vesica::app::Procedure> RecordedProcedure(const std::string& path)
   return std::nullopt;
 }
 
-int ReplayNeedleBiopsy(const std::string& recording_path, const std::string& patient_dir, ProgressStyle style) {
+int ReplayNeedleBiopsy(const std::string& recording_path, const std::string& patient_dir,
+                       const std::string& liver_motion_mesh, const std::string& liver_motion, ProgressStyle style) {
   namespace biopsy = vesica::app::biopsy;
   const auto recording = vesica::device::ReadStylusRecording(recording_path);
   const auto patient = biopsy::LoadCommittedBiopsyPatient(patient_dir);
+  biopsy::BiopsySessionSettings settings;
+  if (!liver_motion.empty()) {
+    settings.liver_motion = biopsy::LoadLiverMotion(*patient, liver_motion_mesh, liver_motion);
+    spdlog::info("the liver breathes as registered in {} (on {})", liver_motion, liver_motion_mesh);
+  }
   const double span_s = recording.samples.back().time_s - recording.samples.front().time_s;
   spdlog::info("needle biopsy: patient {}, recording {:.2f} s ({} samples)", patient_dir, span_s,
                recording.samples.size());
   const long ticks = std::lround(span_s / 0.001) + 1;
   ReplayProgress progress(style, ticks / 5, span_s);  // counted in 5 ms steps, as a dissection's
   const biopsy::BiopsyReplayResult r = biopsy::ReplayBiopsy(
-      patient, recording, {}, 0.001, [&](long tick, long) { progress.Update(tick / 5, static_cast<double>(tick) * 1e-3); });
+      patient, recording, settings, 0.001, [&](long tick, long) { progress.Update(tick / 5, static_cast<double>(tick) * 1e-3); });
   progress.Finish();
   const vesica::app::SessionMetrics& m = r.metrics;
   std::printf("procedure             needle biopsy\n");
@@ -184,6 +191,13 @@ int main(int argc, char** argv) {
   std::string patient_dir = std::string(VESICA_DATA_DIR) + "/patients";
   cli.add_option("--patient-dir", patient_dir, "a needle biopsy's patient (the synthetic patient's files)")
       ->capture_default_str();
+  std::string liver_motion_mesh, liver_motion;
+  auto* motion_mesh_option = cli.add_option("--liver-motion-mesh", liver_motion_mesh,
+                                            "needle biopsy: the tet mesh vesica-register registered (.vtu)");
+  cli.add_option("--liver-motion", liver_motion,
+                 "needle biopsy: vesica-register's displacement.csv on that mesh: the liver breathes as registered "
+                 "instead of by ChainMail")
+      ->needs(motion_mesh_option);
   CLI11_PARSE(cli, argc, argv);
 
   try {
@@ -197,7 +211,7 @@ int main(int argc, char** argv) {
       const ProgressStyle style = progress == "lines"  ? ProgressStyle::kLines
                                   : progress == "none" ? ProgressStyle::kNone
                                                        : ProgressStyle::kAuto;
-      return ReplayNeedleBiopsy(recording_path, patient_dir, style);
+      return ReplayNeedleBiopsy(recording_path, patient_dir, liver_motion_mesh, liver_motion, style);
     }
     vesica::device::ReplayInput input(vesica::device::ReadInputRecording(recording_path));
     try {  // refused before anything is built: the span alone decides

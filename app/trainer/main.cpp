@@ -62,6 +62,12 @@ int main(int argc, char** argv) {
                  "default: the keyboard and mouse drive the needle")
       ->check(CLI::Range(1, 65534));
   cli.add_option("--patient-dir", options.patient_dir, "needle mode: the biopsy patient's files (default data/patients)");
+  auto* motion_mesh = cli.add_option("--liver-motion-mesh", options.liver_motion_mesh,
+                                     "needle mode: the tet mesh vesica-register registered (.vtu)");
+  cli.add_option("--liver-motion", options.liver_motion,
+                 "needle mode: vesica-register's displacement.csv on that mesh: the liver breathes as registered "
+                 "instead of by ChainMail")
+      ->needs(motion_mesh);
   cli.add_option("--arms-udp-base-port", options.arms_udp_base_port,
                  "emulated arms: vesica-armsim node n listens on this port + 2(n-1)")
       ->capture_default_str()

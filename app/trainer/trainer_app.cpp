@@ -7,6 +7,7 @@
 #include <exception>
 #include <utility>
 
+#include "app/biopsy/liver_motion.h"
 #include "app/records/pending_sessions.h"
 #include "app/records/session_store.h"
 #include "app/render/laparoscope_view.h"
@@ -109,6 +110,10 @@ bool TrainerApp::OpenNeedleBiopsy() {
     options.station = options_.station;
     options.records_location = options_.records_location;
     options.saver = options_.saver;
+    if (!options_.liver_motion.empty()) {
+      options.liver_motion = biopsy::LoadLiverMotion(*biopsy_patient_, options_.liver_motion_mesh, options_.liver_motion);
+      spdlog::info("needle mode: the liver breathes as registered in {}", options_.liver_motion.string());
+    }
     next = std::make_unique<needle_mode::NeedleWindow>(biopsy_patient_, biopsy_surfaces_, stylus, servo, options);
   } catch (const std::exception& e) {
     last_error_ = e.what();

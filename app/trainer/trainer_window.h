@@ -42,6 +42,9 @@ struct TrainerOptions {
   /// and takes forces on P; 0: the keyboard and mouse drive the needle.
   int omni_udp_port = 0;
   std::filesystem::path patient_dir;     ///< the biopsy patient's files; empty: data/patients
+  /// Needle mode: a registration result (vesica-register's mesh and displacement.csv) moves the
+  /// liver instead of ChainMail when both are given.
+  std::filesystem::path liver_motion_mesh, liver_motion;
 };
 
 class TrainerWindow : public QMainWindow {
