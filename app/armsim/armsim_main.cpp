@@ -172,11 +172,8 @@ int main(int argc, char** argv) {
     script = emu::HandScript(let_go);
     hand_text = "of random arm " + std::to_string(random_arm) + " not holding it";
   }
+  config.firmware_minor = static_cast<std::uint8_t>(firmware_minor);
   emu::ArmEmulator arm(*transport, plant, q0, config);
-  if (firmware_minor < vesica::fp::kProtocolMinor) {
-    arm.node().emulate_firmware_minor(static_cast<std::uint8_t>(firmware_minor));
-    arm.Reboot();  // boots its flash as that firmware would
-  }
   arm.plant().SetHandScript(script);
   vesica::app::FixtureControl fixture;
   spdlog::info("vesica-armsim: node {} listening on UDP {} -> {}:{}, the hand {}", arm.node().node_id(),

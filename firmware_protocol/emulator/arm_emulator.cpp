@@ -18,7 +18,9 @@ ArmEmulator::ArmEmulator(Transport& transport, const ArmPlantParameters& params,
       node_(std::make_unique<Node<EmulatedBoard>>(*board_, config.serial)),
       origin_(transport.now()),
       next_tick_(origin_) {
-  ProgramFactoryFlash(*board_, params, q0, config.board.park_position, config.node_id, config.serial);
+  node_->emulate_firmware_minor(config.firmware_minor);
+  ProgramFactoryFlash(*board_, params, q0, config.board.park_position, config.node_id, config.serial,
+                      config.firmware_minor < kLayout2Minor ? 1 : ParameterStore::kLayoutVersion);
   node_->boot(Micros(next_tick_));
   Flush(next_tick_);
 }

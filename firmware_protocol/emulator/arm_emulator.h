@@ -24,6 +24,9 @@ class ArmEmulator {
     Nanoseconds tick_period{std::chrono::microseconds(100)};  ///< node + plant step, 10 kHz
     Nanoseconds send_deadline{std::chrono::milliseconds(1)};  ///< per frame handed to the bus
     EmulatedBoard::Config board;
+    /// Firmware of this protocol minor (Node::emulate_firmware_minor): below 3 its factory slot
+    /// and its saves are image layout 1, as that firmware's were.
+    std::uint8_t firmware_minor = kProtocolMinor;
   };
 
   /// q0: true joint positions at power-up. The flash is programmed as the factory leaves it

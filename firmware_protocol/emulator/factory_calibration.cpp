@@ -36,7 +36,8 @@ ParameterStore FactoryCalibration(const ArmPlantParameters& plant, const Joint4&
 }
 
 void ProgramFactoryFlash(EmulatedBoard& board, const ArmPlantParameters& plant, const Joint4& q0,
-                         const JointArray& park_position, std::uint8_t node_id, std::uint32_t serial) {
+                         const JointArray& park_position, std::uint8_t node_id, std::uint32_t serial,
+                         std::uint16_t layout) {
   SlotHeader header{1, 0, 0, serial};
   ParameterStore store;
   if (plant.factory_calibrated) {
@@ -48,7 +49,7 @@ void ProgramFactoryFlash(EmulatedBoard& board, const ArmPlantParameters& plant, 
   }
   store.write(param::kNodeId, ParameterType::U32, node_id);
   std::uint8_t image[ParameterStore::kImageSize];
-  const std::size_t n = store.serialize(image, sizeof image);
+  const std::size_t n = store.serialize(image, sizeof image, layout);
   std::uint8_t slot_image[slot::kSize];
   const std::size_t m = encode_slot(header, image, n, slot_image, sizeof slot_image);
   board.storage_write(slot::offset(0), slot_image, m);

@@ -24,8 +24,10 @@ ParameterStore FactoryCalibration(const ArmPlantParameters& plant, const Joint4&
 
 /// Programs the board's flash as the factory leaves it, slot A generation 1: with
 /// FactoryCalibration when plant.factory_calibrated, else (an arm nobody calibrated) only the
-/// node id when it is not the default 1, else nothing (a blank board).
+/// node id when it is not the default 1, else nothing (a blank board). layout: the image layout
+/// (1 for firmware before protocol 1.3).
 void ProgramFactoryFlash(EmulatedBoard& board, const ArmPlantParameters& plant, const Joint4& q0,
-                         const JointArray& park_position, std::uint8_t node_id, std::uint32_t serial);
+                         const JointArray& park_position, std::uint8_t node_id, std::uint32_t serial,
+                         std::uint16_t layout = ParameterStore::kLayoutVersion);
 
 }  // namespace vesica::fp::emulator

@@ -239,5 +239,56 @@ TEST(CalibrateArmsim, TheReferenceLoadAndTheHandStepsRunOverUdpAndProtocol1Point
   EXPECT_NEAR(j["calibration"]["pitch"]["torque_constant_correction"].get<double>(), 1.0, 0.01);
 }
 
+// Version negotiation: the 1.3 tool and a node of protocol 1.2 (armsim --firmware-minor 2). The
+// jaw span is measured and reported; the tool says the node cannot store it and saves nothing;
+// info says protocol 1.2 and that its image is layout 1 with the layout-2 values absent.
+TEST(CalibrateArmsim, ANodeOfProtocol1Point2GetsTheHandStepButNotItsStorageAndTheToolSaysSo) {
+  if (!RealTimeAllowed()) GTEST_SKIP() << "SCHED_FIFO refused here (needs CAP_SYS_NICE)";
+  const int base = device::testing::FreeArmBasePort();
+  ASSERT_NE(base, 0);
+  testing::FixtureArmsim arm;
+  ASSERT_TRUE(arm.Start(VESICA_ARMSIM_PATH, {"--node-id", "1", "--local-port", std::to_string(base), "--firmware-minor",
+                                             "2", "--realtime-priority", "20", "--log-level", "error"}));
+  ASSERT_TRUE(arm.Command("let-go"));
+  const std::string dir = testing::FreshDir("armsim-older-node");
+  const std::vector<std::string> common{"--udp-base-port", std::to_string(base),  "--dir", dir,
+                                        "--json",          "--realtime-priority", "20",    "--date",
+                                        "1790000000"};
+  auto with = [&](std::vector<std::string> tail) {
+    std::vector<std::string> a = common;
+    a.insert(a.end(), tail.begin(), tail.end());
+    return a;
+  };
+  auto hand = [&](const std::string& line) -> std::string {
+    const char* command = line.find("jaw span (1 of 2)") != std::string::npos   ? "hand jaw=0"
+                          : line.find("jaw span (2 of 2)") != std::string::npos ? "hand jaw=0.7"
+                                                                                : nullptr;
+    if (!command) return "";
+    EXPECT_TRUE(arm.Command(command));
+    std::this_thread::sleep_for(std::chrono::milliseconds(900));
+    return "\n";
+  };
+  const ToolRun r = UntilAnswered([&] {
+    return testing::RunToolAnswering(with({"calibrate", "1", "--step", "jaw-span"}), hand);
+  });
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err << r.out;
+  EXPECT_FALSE(r.json()["saved"].get<bool>());
+  const fp::emulator::HandSensorModel sensors;
+  EXPECT_EQ(r.json()["measured"]["hand"]["jaw"]["open_raw"], sensors.JawRaw(0.6));  // measured and reported
+  EXPECT_NE(r.err.find("node 1 speaks protocol 1.2: the torque-constant correction and the hand sensors' "
+                       "calibration are measured and reported but not stored (they need 1.3; update the arm's "
+                       "firmware)"),
+            std::string::npos)
+      << r.err;
+  const ToolRun info = RunTool(with({"info", "1"}));
+  ASSERT_EQ(info.exit_code, kExitOk) << info.err;
+  const nlohmann::json node = info.json()["node"];
+  EXPECT_EQ(node["protocol"], "1.2");
+  EXPECT_EQ(node["protocol_negotiated_minor"], 2);
+  EXPECT_EQ(node["image_layout"], 1);
+  ASSERT_EQ(node["absent_fields"].size(), 9u);
+  EXPECT_EQ(node["absent_fields"][0], "torque_constant_correction[yaw]");
+}
+
 }  // namespace
 }  // namespace vesica::app::calibrate
