@@ -2,7 +2,10 @@
 // calibration back in force as the newest slot; verify passes on an unchanged arm.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "app/calibrate/exit_codes.h"
+#include "firmware_protocol/node/calibration_slot.h"
 #include "tool_process.h"
 
 namespace vesica::app::calibrate {
@@ -74,6 +77,44 @@ TEST(CalibrateRestore, TheOtherSlotAndAFileComeBackAsTheNewestCalibration) {
   EXPECT_EQ(other.json()["error"]["message"], "arm 2: " + file +
                                                   " is the calibration of serial 0x5E51CA01, this arm is serial "
                                                   "0x5E51CA02; nothing was written");
+}
+
+// An image file of a 1.0 .. 1.2 tool (image layout 1) restores onto a 1.3 node: its values come
+// back, stored as layout 2, the values layout 1 lacks neutral.
+TEST(CalibrateRestore, AnImageFileOfImageLayout1IsRestoredAsLayout2) {
+  const std::string dir = testing::FreshDir("restore-layout1");
+  const std::vector<std::string> bus = {"--emulated", "21", "--dir", dir, "--yes", "--quiet", "--json"};
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> all = bus;
+    all.insert(all.end(), more.begin(), more.end());
+    return RunTool(all);
+  };
+  auto first = with({"--date", "1790000000", "calibrate", "1"});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  // The stored image, written again as a 1.2 tool kept it.
+  const auto bytes = testing::ReadBytes(first.json()["session_dir"].get<std::string>() + "/arm1-stored.vcal");
+  const fp::SlotCheck check = fp::check_slot(bytes.data(), bytes.size());
+  ASSERT_EQ(check.status, fp::StorageResult::Ok);
+  ASSERT_EQ(check.layout, 2);
+  fp::ParameterStore params;
+  ASSERT_EQ(params.deserialize(bytes.data() + fp::slot::kHeaderSize, bytes.size() - fp::slot::kHeaderSize - 4),
+            fp::StorageResult::Ok);
+  std::uint8_t image[fp::ParameterStore::kImageSize];
+  const std::size_t n = params.serialize(image, sizeof image, 1);
+  std::uint8_t slot[fp::slot::kSize];
+  ASSERT_EQ(fp::encode_slot(check.header, image, n, slot, sizeof slot), fp::slot::kLayout1Size);
+  const std::string old = dir + "-layout1.vcal";
+  std::ofstream(old, std::ios::binary).write(reinterpret_cast<const char*>(slot), fp::slot::kLayout1Size);
+
+  // A second calibration, so that the restore has something to replace.
+  ASSERT_EQ(with({"--date", "1790086400", "calibrate", "1", "--step", "friction"}).exit_code, 0);
+  auto back = with({"restore", "1", "--file", old});
+  ASSERT_EQ(back.exit_code, 0) << back.err;
+  EXPECT_EQ(back.json()["after"], first.json()["after"]);
+  auto info = with({"info", "1"});
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_EQ(info.json()["node"]["image_layout"], 2);
+  EXPECT_EQ(info.json()["node"]["calibration_date_s"], 1790000000);
 }
 
 }  // namespace
