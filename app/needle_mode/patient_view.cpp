@@ -52,6 +52,12 @@ struct PatientView::Organ {
   vtkSmartPointer<vtkActor> actor;
 };
 
+patient::MeshingOptions DisplayMeshing() {
+  patient::MeshingOptions options;
+  options.decimate_fraction = 0.95;
+  return options;
+}
+
 PatientView::PatientView(const biopsy::BiopsyPatient& patient, std::vector<patient::OrganSurface> surfaces)
     : patient_(patient), renderer_(vtkSmartPointer<vtkRenderer>::New()) {
   renderer_->SetBackground(0.08, 0.09, 0.11);
@@ -118,7 +124,7 @@ PatientView::PatientView(const biopsy::BiopsyPatient& patient, std::vector<patie
   needle_actor_->GetProperty()->SetSpecular(0.8);
   needle_actor_->GetProperty()->SetSpecularPower(60);
   renderer_->AddActor(needle_actor_);
-  renderer_->SetUseDepthPeeling(true);
+  renderer_->SetUseDepthPeeling(false);
   renderer_->SetMaximumNumberOfPeels(4);
   ResetCamera();
 }

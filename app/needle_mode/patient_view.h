@@ -21,6 +21,10 @@ class vtkRenderer;
 
 namespace vesica::app::needle_mode {
 
+/// How the needle mode meshes the patient for display: decimated further than MeshPatient's
+/// default (a 2 mm CT's surfaces are ~420k triangles, which software rendering draws at 5 Hz).
+patient::MeshingOptions DisplayMeshing();
+
 class PatientView {
  public:
   /// `surfaces`: MeshPatient of the patient's label map.

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "app/biopsy/liver_motion.h"
+#include "app/needle_mode/patient_view.h"
 #include "app/records/pending_sessions.h"
 #include "app/records/session_store.h"
 #include "app/render/laparoscope_view.h"
@@ -77,7 +78,7 @@ bool TrainerApp::OpenNeedleBiopsy() {
           options_.patient_dir.empty() ? std::filesystem::path(VESICA_DATA_DIR) / "patients" : options_.patient_dir;
       spdlog::info("loading the biopsy patient from {} and meshing its organs", dir.string());
       auto loaded = biopsy::LoadCommittedBiopsyPatient(dir);
-      biopsy_surfaces_ = patient::MeshPatient(loaded->volume.labels);
+      biopsy_surfaces_ = patient::MeshPatient(loaded->volume.labels, needle_mode::DisplayMeshing());
       biopsy_patient_ = std::move(loaded);
     }
     std::shared_ptr<device::StylusDevice> stylus;
@@ -111,7 +112,8 @@ bool TrainerApp::OpenNeedleBiopsy() {
     options.records_location = options_.records_location;
     options.saver = options_.saver;
     if (!options_.liver_motion.empty()) {
-      options.liver_motion = biopsy::LoadLiverMotion(*biopsy_patient_, options_.liver_motion_mesh, options_.liver_motion);
+      options.liver_motion =
+          biopsy::LoadLiverMotion(*biopsy_patient_, options_.liver_motion_mesh, options_.liver_motion);
       spdlog::info("needle mode: the liver breathes as registered in {}", options_.liver_motion.string());
     }
     next = std::make_unique<needle_mode::NeedleWindow>(biopsy_patient_, biopsy_surfaces_, stylus, servo, options);
@@ -123,7 +125,8 @@ bool TrainerApp::OpenNeedleBiopsy() {
   }
   last_error_.clear();
   next->SetProcedureSwitcher([this] {
-    QTimer::singleShot(0, &deferred_, [this] { Open(scenario_path_.empty() ? DefaultScenarioPath() : scenario_path_); });
+    QTimer::singleShot(0, &deferred_,
+                       [this] { Open(scenario_path_.empty() ? DefaultScenarioPath() : scenario_path_); });
   });
   next->resize(window_size_);
   needle_window_ = std::move(next);
@@ -140,8 +143,8 @@ void TrainerApp::StorePendingSessionsAtStart() {
   try {
     const PendingStoreResult r = StorePendingSessions(path, *OpenSessionStore(options_.records_location));
     if (r.left == 0) {
-      const std::string message = "Stored " + std::to_string(r.stored) + " session(s) kept from an earlier run in " +
-                                  path.string();
+      const std::string message =
+          "Stored " + std::to_string(r.stored) + " session(s) kept from an earlier run in " + path.string();
       spdlog::info("{}", message);
       window_->statusBar()->showMessage(QString::fromStdString(message));
     } else {

@@ -21,6 +21,7 @@
 #include "app/history/metrics_panel.h"
 #include "app/needle_mode/breathing_panel.h"
 #include "app/needle_mode/ct_slice_widget.h"
+#include "app/needle_mode/patient_view.h"
 #include "app/records/session_store.h"
 #include "app/scenario/scenario_loader.h"
 #include "app/trainer/trainer_app.h"
@@ -36,7 +37,8 @@ class NeedleWindowTest : public ::testing::Test {
   static void SetUpTestSuite() {
     patient_ = new std::shared_ptr<const biopsy::BiopsyPatient>(
         biopsy::LoadCommittedBiopsyPatient(std::filesystem::path(VESICA_SOURCE_DIR) / "data/patients"));
-    surfaces_ = new std::vector<patient::OrganSurface>(patient::MeshPatient((*patient_)->volume.labels));
+    surfaces_ =
+        new std::vector<patient::OrganSurface>(patient::MeshPatient((*patient_)->volume.labels, DisplayMeshing()));
   }
   static void TearDownTestSuite() {
     delete surfaces_;
@@ -193,6 +195,45 @@ TEST_F(NeedleWindowTest, SwitchingProcedureStoresTheCholecystectomyOpensTheNeedl
   EXPECT_EQ(app.needle_window(), nullptr);
   // The needle never entered the patient: nothing to store for the biopsy.
   EXPECT_EQ(OpenSessionStore(options.records_location)->List("resident-34").size(), 1u);
+  app.Shutdown();
+}
+
+// At an arm station: the switch to the needle releases both haptic arms (vesica-armsim processes)
+// with zero force, disabled and without a fault (not a vanished host that the arms' watchdog
+// catches), and the cholecystectomy is in the records.
+TEST_F(NeedleWindowTest, TheSwitchReleasesTheArmsWithZeroForceBeforeTheNeedleTakesOver) {
+  const int base = device::testing::FreeArmBasePort();
+  ASSERT_NE(base, 0);
+  device::testing::ArmsimProcess left, right;
+  ASSERT_TRUE(left.Start(VESICA_ARMSIM_PATH,
+                         {"--node-id", "1", "--local-port", std::to_string(base), "--report", "--log-level", "warn"}));
+  ASSERT_TRUE(right.Start(VESICA_ARMSIM_PATH, {"--node-id", "2", "--local-port", std::to_string(base + 2), "--report",
+                                               "--log-level", "warn"}));
+  TrainerOptions options;
+  options.trainee_id = "resident-34";
+  options.records_location = (dir_ / "sessions.sqlite").string();
+  options.arms_udp_base_port = base;
+  TrainerApp app(options, QSize(900, 550));
+  ASSERT_TRUE(app.Open(std::filesystem::path(VESICA_SOURCE_DIR) / "data/scenarios/cholecystectomy-arms.toml"))
+      << app.last_error();
+  const auto both_ok = [&] {
+    const std::string lines = app.window()->ArmStatusLines();
+    return lines.find("left arm: ok") != std::string::npos && lines.find("right arm: ok") != std::string::npos;
+  };
+  ASSERT_TRUE(QTest::qWaitFor(both_ok, 20000)) << app.window()->ArmStatusLines();
+  QTest::qWait(500);
+  app.window()->findChild<QAction*>("procedure_needle_biopsy")->trigger();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return app.needle_window() != nullptr; }, 30000)) << app.last_error();
+  QTest::qWait(500);  // the arms would fault on a lost host within this
+  left.Kill(SIGTERM);
+  right.Kill(SIGTERM);
+  for (device::testing::ArmsimProcess* arm : {&left, &right}) {
+    std::string report;
+    EXPECT_EQ(arm->Finish(&report), 0);
+    EXPECT_NE(report.find("actuator_force_N=0.000000,0.000000,0.000000"), std::string::npos) << report;
+    EXPECT_EQ(report.find("state=enabled"), std::string::npos) << report;
+    EXPECT_NE(report.find("fault=none"), std::string::npos) << report;
+  }
   app.Shutdown();
 }
 
