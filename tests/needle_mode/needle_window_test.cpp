@@ -185,16 +185,41 @@ TEST_F(NeedleWindowTest, SwitchingProcedureStoresTheCholecystectomyOpensTheNeedl
     EXPECT_EQ(sessions[0].record.procedure, Procedure::kCholecystectomy);
     EXPECT_TRUE(sessions[0].record.unfinished);
   }
-  // The needle is out, a breath is held and released, then back to the cholecystectomy.
-  QTest::keyClick(app.needle_window(), Qt::Key_H);
-  QTest::qWait(300);
-  QAction* back = app.needle_window()->findChild<QAction*>("procedure_cholecystectomy");
+  // A biopsy with the keyboard stylus the trainer gave the needle mode: in along the committed
+  // biopsy's line during a breath hold, the sample on Space.
+  NeedleWindow& needle = *app.needle_window();
+  auto* keyboard = dynamic_cast<device::KeyboardStylus*>(&needle.runner().stylus());
+  ASSERT_NE(keyboard, nullptr);
+  QTest::keyClick(&needle, Qt::Key_H);
+  QTest::qWait(1200);
+  const biopsy::ScriptedBiopsyPlan plan;
+  std::string error;
+  for (int i = 0; i <= 40; ++i) {
+    const physics::NeedlePose pose{plan.entry_above_skin_W + (plan.target_W - plan.entry_above_skin_W) * (i / 40.0),
+                                   plan.direction_W};
+    ASSERT_TRUE(keyboard->SetPose(biopsy::StylusForNeedle(Placement(), pose), &error)) << error;
+    QTest::qWait(25);
+  }
+  QTest::qWait(200);
+  QTest::keyPress(&needle, Qt::Key_Space);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return needle.stored_session_id().has_value(); }, 15000)) << needle.last_error();
+  QTest::keyRelease(&needle, Qt::Key_Space);
+  {  // The records hold both procedures, in the order they were done.
+    const auto sessions = OpenSessionStore(options.records_location)->List("resident-34");
+    ASSERT_EQ(sessions.size(), 2u);
+    EXPECT_EQ(sessions[0].record.procedure, Procedure::kCholecystectomy);
+    EXPECT_EQ(sessions[1].record.procedure, Procedure::kNeedleBiopsy);
+    EXPECT_TRUE(sessions[1].record.metrics.biopsy_sampled);
+    EXPECT_FALSE(sessions[1].record.unfinished);
+  }
+  // Back to the cholecystectomy.
+  QAction* back = needle.findChild<QAction*>("procedure_cholecystectomy");
   ASSERT_NE(back, nullptr);
   back->trigger();
   ASSERT_TRUE(QTest::qWaitFor([&] { return app.window() != nullptr; }, 30000)) << app.last_error();
   EXPECT_EQ(app.needle_window(), nullptr);
-  // The needle never entered the patient: nothing to store for the biopsy.
-  EXPECT_EQ(OpenSessionStore(options.records_location)->List("resident-34").size(), 1u);
+  // The finished biopsy was stored once: nothing more on the way back.
+  EXPECT_EQ(OpenSessionStore(options.records_location)->List("resident-34").size(), 2u);
   app.Shutdown();
 }
 
