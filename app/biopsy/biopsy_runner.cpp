@@ -28,6 +28,11 @@ void BiopsyRunner::Stop() {
 
 SessionMetrics BiopsyRunner::Metrics() { return metrics_.Latest(); }
 
+device::StylusRecording BiopsyRunner::Recording() const {
+  const std::lock_guard lock(recording_mutex_);
+  return recorder_.recording();
+}
+
 std::string BiopsyRunner::error() const {
   const std::lock_guard lock(error_mutex_);
   return error_;
@@ -39,6 +44,7 @@ void BiopsyRunner::HapticLoop() {
   auto next = Clock::now();
   long tick = 0;
   device::StylusState last_good;
+  std::uint32_t last_recorded_buttons = 0;
   try {
     while (!stop_) {
       if (servo_) servo_();
@@ -47,6 +53,14 @@ void BiopsyRunner::HapticLoop() {
       // Session time counts ticks, so a late tick does not make the patient jump ahead.
       const double t = static_cast<double>(tick) * tick_s_;
       const physics::NeedleForces& forces = session_.Tick(last_good, t);
+      // Every 10th tick (10 ms at 1 kHz), and every button change, so a replay takes the sample
+      // at the same tick.
+      const bool button_changed = last_good.buttons != last_recorded_buttons;
+      if (tick % 10 == 0 || button_changed) {
+        const std::lock_guard lock(recording_mutex_);
+        recorder_.Append(t, last_good);
+        last_recorded_buttons = last_good.buttons;
+      }
       stylus_->SetTipForce(device_ok ? session_.DeviceForce() : Eigen::Vector3d::Zero());
 
       NeedleFrame frame;

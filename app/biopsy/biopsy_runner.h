@@ -16,6 +16,7 @@
 
 #include "app/biopsy/biopsy_session.h"
 #include "device/stylus/stylus_device.h"
+#include "device/stylus/stylus_recorder.h"
 #include "physics/scene/triple_buffer.h"
 
 namespace vesica::app::biopsy {
@@ -58,6 +59,9 @@ class BiopsyRunner {
   void ResumeBreathing() { patient_.ResumeBreathing(); }
   /// The metrics so far (from the last tick); final once finished.
   [[nodiscard]] SessionMetrics Metrics();
+  /// The stylus stream so far, a sample every record_period_s of session time (what the session
+  /// ticked with): a stylus recording that replays the session (vesica-replay).
+  [[nodiscard]] device::StylusRecording Recording() const;
   /// The haptic thread stopped on an error (a bad sample it could not use); empty if none.
   [[nodiscard]] std::string error() const;
 
@@ -73,6 +77,8 @@ class BiopsyRunner {
   StylusPlacement placement_;
   physics::TripleBuffer<NeedleFrame> needle_frames_{NeedleFrame{}};
   physics::TripleBuffer<SessionMetrics> metrics_{SessionMetrics{}};
+  mutable std::mutex recording_mutex_;
+  device::StylusRecorder recorder_;  // guarded by recording_mutex_
   mutable std::mutex error_mutex_;
   std::string error_;
   std::atomic<bool> stop_{false};

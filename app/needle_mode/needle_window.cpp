@@ -24,6 +24,7 @@
 #include "app/needle_mode/ct_slice_widget.h"
 #include "app/needle_mode/patient_view.h"
 #include "app/records/pending_sessions.h"
+#include "app/session/session_recording_file.h"
 #include "device/stylus/keyboard_stylus.h"
 
 namespace vesica::app::needle_mode {
@@ -235,6 +236,22 @@ void NeedleWindow::Finish(bool unfinished) {
   record.ended_unix_s = std::max(started_unix_s_, NowUnix());
   record.unfinished = unfinished;
   record.metrics = metrics;
+  // The stylus stream is a bonus: when it cannot be written the session is stored without it.
+  if (!options_.recordings_dir.empty()) {
+    std::filesystem::path path;
+    try {
+      const device::StylusRecording stream = runner_->Recording();
+      if (!stream.samples.empty()) {
+        path = CreateSessionRecordingFile(options_.recordings_dir, options_.trainee_id + "-biopsy", started_unix_s_);
+        device::WriteStylusRecording(path, stream);
+        record.input_recording_path = path.string();
+      }
+    } catch (const std::exception& e) {
+      std::error_code ignored;
+      if (!path.empty()) std::filesystem::remove(path, ignored);
+      spdlog::warn("biopsy of {}: stylus recording not saved: {}", options_.trainee_id, e.what());
+    }
+  }
   save_ticket_ = saver_->Save(record);
 }
 

@@ -6,6 +6,7 @@
 // Omni), or the keyboard and mouse. The window only reads the haptic thread's snapshots.
 
 #include <QMainWindow>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -33,7 +34,8 @@ class PatientView;
 struct NeedleModeOptions {
   std::string trainee_id = "trainee";
   std::string station = "vesica";
-  std::string records_location;  ///< SessionStore location; empty: not stored
+  std::string records_location;          ///< SessionStore location; empty: not stored
+  std::filesystem::path recordings_dir;  ///< where each biopsy's stylus stream is saved; empty: not saved
   SaverOptions saver;
   double slice_period_s = 0.1;                          ///< the CT images are resliced this often (10 Hz)
   physics::BreathingPatient::LiverMotion liver_motion;  ///< a registered breathing (issue 35); empty: ChainMail

@@ -110,6 +110,7 @@ bool TrainerApp::OpenNeedleBiopsy() {
     options.trainee_id = options_.trainee_id;
     options.station = options_.station;
     options.records_location = options_.records_location;
+    options.recordings_dir = options_.recordings_dir;
     options.saver = options_.saver;
     if (!options_.liver_motion.empty()) {
       options.liver_motion =

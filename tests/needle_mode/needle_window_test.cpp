@@ -14,6 +14,7 @@
 #include <QLabel>
 #include <QPushButton>
 #include <QTest>
+#include <algorithm>
 #include <filesystem>
 
 #include "app/biopsy/biopsy_patient.h"
@@ -26,6 +27,7 @@
 #include "app/scenario/scenario_loader.h"
 #include "app/trainer/trainer_app.h"
 #include "device/stylus/keyboard_stylus.h"
+#include "device/stylus/stylus_recording.h"
 #include "device/stylus/udp_stylus.h"
 #include "tests/device/armsim_process.h"
 
@@ -72,7 +74,9 @@ TEST_F(NeedleWindowTest, AKeyboardBiopsyDuringABreathHoldIsShownAndStoredAsANeed
   const Eigen::Vector3d tumour = (*patient_)->model->liver.tumour_centre_m;
   auto keyboard = std::make_shared<device::KeyboardStylus>(biopsy::StartingStylus(Placement(), tumour));
   keyboard->Open();
-  NeedleWindow window(*patient_, *surfaces_, keyboard, {}, Options());
+  NeedleModeOptions options = Options();
+  options.recordings_dir = dir_ / "recordings";
+  NeedleWindow window(*patient_, *surfaces_, keyboard, {}, options);
   window.resize(1200, 700);
   window.show();
   ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
@@ -120,6 +124,14 @@ TEST_F(NeedleWindowTest, AKeyboardBiopsyDuringABreathHoldIsShownAndStoredAsANeed
   EXPECT_TRUE(r.metrics.success);
   EXPECT_EQ(r.metrics.insertion_attempts, 1);
   EXPECT_GT(r.metrics.max_force_N, 0.0);
+  // The stylus stream was saved beside it: button 1 goes down in it when the sample was taken.
+  ASSERT_FALSE(r.input_recording_path.empty());
+  const device::StylusRecording stream = device::ReadStylusRecording(r.input_recording_path);
+  const auto press = std::find_if(stream.samples.begin(), stream.samples.end(), [](const device::StylusSample& s) {
+    return (s.state.buttons & device::kStylusButton1) != 0;
+  });
+  ASSERT_NE(press, stream.samples.end());
+  EXPECT_NEAR(press->time_s, r.metrics.time_to_sample_s, 1e-9);
 }
 
 TEST_F(NeedleWindowTest, KillingTheOmniEmulatorMidInsertionZeroesTheForceAndTheWindowSaysSo) {
