@@ -59,6 +59,14 @@ std::string ArmSupervisor::Describe(const ArmSupervisorConfig& config, const See
              "`";
     }
     case DeviceStatus::kConnecting:
+      if (seen.homing) return head + "homing " + std::to_string(static_cast<int>(100.0 * seen.homing_fraction)) + "%";
+      if (seen.not_homed) {
+        const std::string node = std::to_string(seen.node_id);
+        const std::string command = config.home_command.empty() ? "vesica-calibrate home " + node : config.home_command;
+        return config.name + " (node " + node + "): not homed since power-up, its positions are not known" +
+               (seen.homing_problem.empty() ? "" : " (" + seen.homing_problem + ")") +
+               "; reset faults to home it again, or run `" + command + "`";
+      }
       if (seen.silent_too_long) return head + "no answer from " + (config.link.empty() ? "the node" : config.link);
       return head + (seen.answered ? "connecting" : "waiting for " + (config.link.empty() ? "the node" : config.link));
     default:
@@ -71,7 +79,16 @@ ArmReport ArmSupervisor::Report() const {
   r.status = arm_.Status();
   r.fault = r.status == DeviceStatus::kNodeFault ? arm_.node_fault() : fp::FaultCode::None;
   r.link_losses = arm_.link_loss_count();
-  Seen seen{r.status, r.fault, arm_.answered(), false, arm_.node_id(), arm_.calibration_problem()};
+  Seen seen{r.status,
+            r.fault,
+            arm_.answered(),
+            false,
+            arm_.node_id(),
+            arm_.calibration_problem(),
+            arm_.homing(),
+            arm_.homing_fraction(),
+            arm_.node_not_homed(),
+            arm_.homing_problem()};
   std::lock_guard lock(mu_);
   r.automatic_fault_resets = automatic_resets_;
   r.requested_fault_resets = requested_resets_;

@@ -19,7 +19,9 @@ struct ArmReport {
   std::uint32_t requested_fault_resets = 0;  ///< faults cleared on the user's command
   /// One line: "left arm: ok", "right arm: FAULT over_current", "right arm: link lost",
   /// "left arm: no answer from node 1 on UDP 127.0.0.1:20000", "left arm (node 1): no valid
-  /// calibration (slot A: blank, slot B: blank); run `vesica-calibrate calibrate 1`".
+  /// calibration (slot A: blank, slot B: blank); run `vesica-calibrate calibrate 1`", "left arm:
+  /// homing 40%", "left arm (node 1): not homed since power-up (...); reset faults to home it
+  /// again, or run `vesica-calibrate home 1`".
   std::string text;
 };
 
@@ -29,6 +31,9 @@ struct ArmSupervisorConfig {
   /// What the technician runs for an arm without a valid calibration; empty: `vesica-calibrate
   /// calibrate N` (N the node id; the tool's default bus is vesica-armsim's UDP).
   std::string calibrate_command;
+  /// What the technician runs to home an arm that the bridge could not home; empty:
+  /// `vesica-calibrate home N`.
+  std::string home_command;
   /// A command-watchdog fault is the host's own doing (its commands stopped: link loss, a stall):
   /// once states arrive again for this long the supervisor sends ResetFault. > 0.
   std::chrono::nanoseconds watchdog_reset_after{std::chrono::milliseconds(200)};
@@ -62,6 +67,10 @@ class ArmSupervisor {
     bool silent_too_long;
     std::uint8_t node_id;
     std::string calibration_problem;
+    bool homing = false;
+    double homing_fraction = 0.0;
+    bool not_homed = false;
+    std::string homing_problem;
   };
   static std::string Describe(const ArmSupervisorConfig& config, const Seen& seen);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <thread>
 #include <variant>
 
 #include "firmware_protocol/node/parameter_table.h"
@@ -38,6 +39,10 @@ CanArm::CanArm(fp::Transport& transport, const CanArmConfig& config)
       config_(config),
       capabilities_(MakeCapabilities(config)),
       link_(config.loss_timeout.count()) {}
+
+CanArm::~CanArm() {
+  if (homing_thread_.joinable()) homing_thread_.join();
+}
 
 DeviceStatus CanArm::Open() {
   std::lock_guard lock(mu_);
@@ -82,6 +87,7 @@ DeviceStatus CanArm::Open() {
 }
 
 void CanArm::Close() {
+  if (homing_thread_.joinable()) homing_thread_.join();  // it stops on its own: the node's session ends
   std::lock_guard lock(mu_);
   if (phase_ == Phase::kClosed) return;
   Send(fp::Control{config_.node_id, control_counter_++, fp::ControlCommand::Disable}, transport_.now());
@@ -113,6 +119,7 @@ DeviceStatus CanArm::ResetFault() {
   std::lock_guard lock(mu_);
   if (phase_ == Phase::kClosed) return DeviceStatus::kNotOpen;
   reset_requested_ = true;  // sent on the next Tick, from the servo thread
+  homing_failed_ = false;   // and the user asks for another homing
   return DeviceStatus::kOk;
 }
 
@@ -184,6 +191,7 @@ void CanArm::HandleFrame(const fp::TimedFrame& rx) {
     node_state_ = hb->state;
     node_enabled_ = hb->enabled;
     node_fault_ = hb->latched_fault;
+    node_not_homed_ = hb->not_homed;
   } else if (const auto* id = std::get_if<fp::Identity>(&m)) {
     negotiated_ = id->negotiated_minor != 0xFF;
   } else if (const auto* pr = std::get_if<fp::ParameterResponse>(&m)) {
@@ -232,6 +240,9 @@ void CanArm::SendHandshake(fp::Nanoseconds now) {
     // Refused: no force from an arm whose offsets, friction and gravity nobody measured. An
     // arm left enabled by an earlier session is disabled.
     if (node_enabled_) Send(fp::Control{config_.node_id, control_counter_++, fp::ControlCommand::Disable}, now);
+  } else if (node_not_homed_ && !node_enabled_) {
+    // Not homed: positions unknown, the node refuses Enable. Home it (or say why not).
+    if (config_.home_at_connection && !homing_failed_) StartHoming();
   } else if (!watchdog_configured_ && !node_enabled_) {
     Send(fp::ParameterRequest{config_.node_id, fp::ParameterOp::Write, fp::ParameterType::U32,
                               fp::param::kWatchdogTimeout_us,
@@ -279,9 +290,58 @@ void CanArm::SendCommand(fp::Nanoseconds now, bool zero) {
   if (Send(c, now) && request_sent_ns_ < 0) request_sent_ns_ = t;
 }
 
+void CanArm::StartHoming() {
+  if (homing_thread_.joinable()) return;
+  homing_problem_.clear();
+  homing_fraction_ = 0.0;
+  homing_running_ = true;
+  homing_thread_ = std::thread([this] {
+    calibration::CalibrationLinkConfig lc;
+    lc.node_id = config_.node_id;
+    lc.loss_timeout = std::max<fp::Nanoseconds>(config_.loss_timeout, std::chrono::milliseconds(50));
+    lc.send_deadline = config_.send_deadline;
+    calibration::CalibrationLink::Waiter wait = config_.homing_wait;
+    if (!wait) {
+      wait = [this](fp::Nanoseconds until) {
+        for (fp::Nanoseconds now = transport_.now(); now < until; now = transport_.now())
+          std::this_thread::sleep_for(std::min<fp::Nanoseconds>(until - now, std::chrono::microseconds(200)));
+      };
+    }
+    calibration::CalibrationLink link(transport_, wait, lc);
+    calibration::HomingPlan plan = config_.homing;
+    const auto user_progress = plan.progress;
+    plan.progress = [this, user_progress](const std::string& step, double fraction) {
+      homing_fraction_ = fraction;
+      if (user_progress) user_progress(step, fraction);
+    };
+    homing_result_ = calibration::HomeArm(link, plan);
+    homing_running_ = false;
+  });
+}
+
+bool CanArm::HomingBusy() {
+  if (!homing_thread_.joinable()) return false;
+  if (homing_running_) return true;
+  homing_thread_.join();
+  if (homing_result_.homed) {
+    ++homing_count_;
+  } else {
+    homing_failed_ = true;
+    homing_problem_ = homing_result_.message;
+  }
+  node_not_homed_ = !homing_result_.homed;  // until the next heartbeat says so itself
+  // The run said Hello and used the node's session: start the handshake afresh. It heard the
+  // node all along: the silence of this cycle's link monitor is no lost link.
+  ForgetNodeSession();
+  node_state_ = fp::NodeState::Boot;
+  link_.OnState(transport_.now().count());
+  return false;
+}
+
 void CanArm::Tick() {
   std::lock_guard lock(mu_);
   if (phase_ == Phase::kClosed) return;
+  if (HomingBusy()) return;  // the homing run owns the transport
   const fp::Nanoseconds now = transport_.now();
   const std::int64_t t = Ns(now);
   if (last_tick_ns_ >= 0) loop_period_.Add(t - last_tick_ns_);
@@ -392,6 +452,9 @@ bool CanArm::calibration_valid() const {
 ArmCalibration CanArm::calibration() const { std::lock_guard lock(mu_); return calibration_reader_.calibration(); }
 std::string CanArm::calibration_problem() const { std::lock_guard lock(mu_); return calibration_reader_.problem(); }
 ArmJoints CanArm::joints() const { std::lock_guard lock(mu_); return q_; }
+std::string CanArm::homing_problem() const { std::lock_guard lock(mu_); return homing_problem_; }
+bool CanArm::node_not_homed() const { std::lock_guard lock(mu_); return node_not_homed_; }
+std::uint32_t CanArm::homing_count() const { std::lock_guard lock(mu_); return homing_count_; }
 fp::NodeState CanArm::node_state() const { std::lock_guard lock(mu_); return node_state_; }
 fp::FaultCode CanArm::node_fault() const { std::lock_guard lock(mu_); return node_fault_; }
 fp::FaultCode CanArm::last_emergency() const { std::lock_guard lock(mu_); return last_emergency_; }

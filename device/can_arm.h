@@ -1,12 +1,16 @@
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <string>
+#include <thread>
 
 #include "device/arm_actuation.h"
 #include "device/arm_calibration.h"
+#include "device/calibration/homing.h"
 #include "device/haptic_device.h"
 #include "device/latency_statistics.h"
 #include "device/link_monitor.h"
@@ -32,6 +36,13 @@ struct CanArmConfig {
   /// technician may be calibrating it now), > 0.
   std::chrono::nanoseconds calibration_recheck{std::chrono::seconds(1)};
   std::string model_name = "Vesica 4-DOF spherical arm";
+  /// Protocol 1.4: a node that says it is not homed since power-up is homed before it is enabled
+  /// (calibration::HomeArm, slow and current-limited); false leaves it disabled, not homed.
+  bool home_at_connection = true;
+  calibration::HomingPlan homing;
+  /// Waits until the transport's clock reaches a time, for the homing run (it owns the transport
+  /// meanwhile); empty: sleeps on the transport's clock (a real bus, UDP).
+  std::function<void(fp::Nanoseconds until)> homing_wait;
 };
 
 /// The host side of one arm on CAN (the bridge). Each Tick() is one servo cycle: read every
@@ -49,10 +60,17 @@ struct CanArmConfig {
 /// Loss: no joint state for loss_timeout -> status kLinkLost, commands stop (the node's watchdog
 /// then zeroes torque and latches a fault). When states return, a latched fault is reported as
 /// kNodeFault and nothing is re-enabled until ResetFault(): the user decides when force returns.
+/// Homing (protocol 1.4): a node whose heartbeat says "not homed" (its encoders lost their
+/// position while off) refuses Enable. Once its calibration is read and valid, the bridge homes it
+/// (calibration::HomeArm on its own thread, which owns the transport meanwhile; Tick() then only
+/// reports homing() and its progress), then connects again and enables it. A homing that stops
+/// (fault, E-stop, lost link, a joint that cannot measure) leaves the arm disabled; ResetFault()
+/// tries again. A node below 1.4 cannot say or do it: it is enabled as before.
 /// Thread-safe: Tick() from the servo thread, the rest from any thread.
 class CanArm final : public HapticDevice {
  public:
   CanArm(fp::Transport& transport, const CanArmConfig& config);
+  ~CanArm() override;
 
   DeviceStatus Open() override;
   void Close() override;
@@ -75,6 +93,14 @@ class CanArm final : public HapticDevice {
   /// valid or still being read.
   std::string calibration_problem() const;
   ArmJoints joints() const;
+  /// Homing under way, and how far (0..1).
+  bool homing() const { return homing_running_.load(); }
+  double homing_fraction() const { return homing_fraction_.load(); }
+  /// Why the last homing stopped ("" if it did not, or none ran); the arm stays disabled.
+  std::string homing_problem() const;
+  /// The node's heartbeat says it is not homed (protocol 1.4).
+  bool node_not_homed() const;
+  std::uint32_t homing_count() const;  ///< homings finished (homed) since construction
   fp::NodeState node_state() const;
   fp::FaultCode node_fault() const;          ///< latched fault as last reported, None if none
   fp::FaultCode last_emergency() const;      ///< fault code of the last EMCY frame seen
@@ -105,6 +131,9 @@ class CanArm final : public HapticDevice {
   /// One read of the node's calibration when one is due; true when it was sent.
   bool SendCalibrationRead(fp::Nanoseconds now);
   void SendCommand(fp::Nanoseconds now, bool zero);
+  void StartHoming();
+  /// Collects a finished homing run; true while one still owns the transport.
+  bool HomingBusy();
   DeviceStatus StatusLocked() const;
 
   fp::Transport& transport_;
@@ -152,6 +181,16 @@ class CanArm final : public HapticDevice {
   std::uint64_t send_failures_ = 0;
   std::uint32_t node_boot_count_ = 0;
   std::string last_error_;
+
+  // Homing (protocol 1.4).
+  bool node_not_homed_ = false;
+  bool homing_failed_ = false;  ///< not retried until ResetFault()
+  std::string homing_problem_;
+  std::uint32_t homing_count_ = 0;
+  std::thread homing_thread_;
+  std::atomic<bool> homing_running_{false};
+  std::atomic<double> homing_fraction_{0.0};
+  calibration::HomingResult homing_result_;  ///< written by the homing thread, read after join
 };
 
 }  // namespace vesica::device

@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   app.add_option("--hand-y-mm", hand_y_mm, "hand target, trocar frame y, mm");
   app.add_option("--depth-mm", depth_mm, "park insertion depth and hand target depth, mm")
       ->check(CLI::Range(20.0, 250.0));
-  app.add_option("--hand", hand,
+  CLI::Option* hand_option = app.add_option("--hand", hand,
                  "what the hand does: 'hold' (at --hand-x-mm/--hand-y-mm/--depth-mm), 'figure8' (about that point), "
                  "or 'recording FILE' (one instrument of a recorded session, e.g. data/recordings/dissection.csv)")
       ->expected(1, 2);
@@ -102,6 +102,18 @@ int main(int argc, char** argv) {
                  "emulate firmware of this protocol minor (1.x): below 3 it stores image layout 1 and has no "
                  "torque-constant correction or hand-sensor calibration")
       ->check(CLI::Range(1, static_cast<int>(vesica::fp::kProtocolMinor)));
+  double moved_while_off_rad = 0.0;
+  app.add_option("--moved-while-off", moved_while_off_rad,
+                 "the arm was moved by hand while off: it powers up this far (rad; insertion a tenth of it in m) from "
+                 "where it was calibrated, each way drawn from --moved-seed, and its node requires homing (protocol "
+                 "1.4): the bridge or `vesica-calibrate home` homes it before it is enabled")
+      ->check(CLI::Range(0.0, 0.9));
+  std::uint64_t moved_seed = 1;
+  app.add_option("--moved-seed", moved_seed, "the seed of --moved-while-off's directions");
+  bool require_homing = false;
+  app.add_flag("--require-homing", require_homing,
+               "the node starts not homed, as a board whose incremental encoders lose their position while off "
+               "(implied by --moved-while-off)");
   CLI11_PARSE(app, argc, argv);
   if (local_port->count() == 0) udp.local_port = 20000 + 2 * (node_id - 1);
   if (remote_port->count() == 0) udp.remote_port = udp.local_port + 1;
@@ -173,7 +185,22 @@ int main(int argc, char** argv) {
     hand_text = "of random arm " + std::to_string(random_arm) + " not holding it";
   }
   config.firmware_minor = static_cast<std::uint8_t>(firmware_minor);
+  config.require_homing = require_homing || moved_while_off_rad > 0.0;
   emu::ArmEmulator arm(*transport, plant, q0, config);
+  if (moved_while_off_rad > 0.0) {
+    // Calibrated (the factory's, or a flash of an earlier run) where it was; moved while off.
+    const emu::Joint4 moved = emu::MovedWhileOff(plant, q0, moved_while_off_rad, moved_seed);
+    arm.PowerCycleAt(moved);
+    if (hand_option->count() == 0) {  // nobody holds an arm that is homing (it seeks its stops)
+      emu::HandTarget let_go;
+      let_go.holding = false;
+      script = emu::HandScript(let_go);
+      hand_text = "not holding it (it must be homed)";
+    }
+    spdlog::info("vesica-armsim: powered up moved while off: yaw {:+.4f} rad, pitch {:+.4f} rad, insertion {:+.4f} m "
+                 "from where it was calibrated",
+                 moved[0] - q0[0], moved[1] - q0[1], moved[3] - q0[3]);
+  }
   arm.plant().SetHandScript(script);
   vesica::app::FixtureControl fixture;
   spdlog::info("vesica-armsim: node {} listening on UDP {} -> {}:{}, the hand {}", arm.node().node_id(),

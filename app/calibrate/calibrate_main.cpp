@@ -81,6 +81,10 @@ int Run(int argc, char** argv) {
   restore->add_option("--file", file, "an image file (beside a report)")->excludes(slot_opt);
   CLI::App* report = app.add_subcommand("report", "a report (JSON + HTML) of the calibration in force");
   report->add_option("ARM", arm_name, "1 (left) or 2 (right)")->required();
+  CLI::App* home = app.add_subcommand(
+      "home", "find the arm's positions again after power-up: lower hard stop, then index (the arm moves)");
+  home->add_option("ARM", arm_name, "1 (left) or 2 (right)")->required();
+  home->add_option("--joint", joint, "one joint only: yaw, pitch or insertion");
 
   try {
     app.parse(argc, argv);
@@ -164,8 +168,13 @@ int Run(int argc, char** argv) {
       r.file = file;
       if (!slot.empty()) r.slot = (slot == "A" || slot == "a") ? 0 : 1;
       o = c::Restore(session, arm, r);
-    } else if (command == report)
+    } else if (command == report) {
       o = c::Report(session, arm);
+    } else if (command == home) {
+      c::HomeRequest h;
+      h.joints = request.joints;
+      o = c::Home(session, arm, h);
+    }
   } catch (const std::exception& e) {
     o = c::ToolSession::Failure(c::kExitInternal, std::string("internal error: ") + e.what());
   }

@@ -50,7 +50,7 @@ void RunStep(Step s, cal::StepContext& ctx) {
 
 // The values the steps leave only in the result; what they write themselves (direction, offsets)
 // is already on the node. Only what ran is written: the rest stays as stored.
-void Commit(cal::CalibrationLink& link, const cal::CalibrationPlan& plan, RunOutcome& o) {
+void Commit(cal::CalibrationLink& link, const cal::CalibrationPlan& plan, RunOutcome& o, bool declare_home) {
   const auto ran = [&](Step s) {
     for (Step x : o.steps)
       if (x == s) return true;
@@ -78,6 +78,10 @@ void Commit(cal::CalibrationLink& link, const cal::CalibrationPlan& plan, RunOut
   cal::StoreLayout2Results(link, plan.joints, o.result);  // protocol 1.3: torque constant, hand sensors
   link.WriteU32(param::kCalibrationDate_s, plan.date_s);
   link.WriteU32(param::kCalibrationToolVersion, plan.tool_version);
+  // Protocol 1.4: the range step measured this power-up's frame; saved, the node is homed with it.
+  if (declare_home && ran(Step::kRange) && link.negotiated_minor() != 0xFF &&
+      link.negotiated_minor() >= fp::kHomingMinor)
+    link.DeclareHome();
   link.Save();
   if (plan.progress) plan.progress("save", 1.0);
 }
@@ -91,6 +95,18 @@ RunOutcome RunCalibration(cal::CalibrationLink& link, BusObserver& bus, const Ru
   try {
     o.result.identity = link.Connect();
     link.ClearFault();
+    // Protocol 1.4: a node not homed since power-up reads positions off by however far the arm
+    // moved while off. The range step finds the frame again; steps without it need it homed.
+    const bool not_homed = link.node_not_homed();
+    bool range = false;
+    for (Step s : request.steps) range = range || s == Step::kRange;
+    if (not_homed && !range)
+      throw cal::CalibrationAbort(cal::AbortReason::kRefused,
+                                  "arm " + std::to_string(link.node_id()) +
+                                      " is not homed since power-up (its positions are not known): run "
+                                      "`vesica-calibrate home " +
+                                      std::to_string(link.node_id()) + "` first, or a whole calibration");
+    const bool declare_home = request.plan.joints == 0b111 || !not_homed;
     // The node's torque constant and ratio: the torques measured are in its units.
     cal::ArmDesign design;
     for (int j = 0; j < 3; ++j) {
@@ -126,7 +142,7 @@ RunOutcome RunCalibration(cal::CalibrationLink& link, BusObserver& bus, const Ru
       }
     } else {
       step = "save";
-      Commit(link, request.plan, o);
+      Commit(link, request.plan, o, declare_home);
       o.result.saved = true;
     }
   } catch (const cal::CalibrationAbort& e) {

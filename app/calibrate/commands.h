@@ -36,4 +36,12 @@ CommandOutcome Restore(ToolSession& s, int arm, const RestoreRequest& request);
 /// A report (JSON + HTML) of the calibration in force, and a copy of its image.
 CommandOutcome Report(ToolSession& s, int arm);
 
+struct HomeRequest {
+  unsigned joints = 0b111;  ///< --joint: one bit
+  double max_current_A = 0.6;
+};
+/// Protocol 1.4: homes the arm after power-up (device::calibration::HomeArm): the stored
+/// calibration in this power-up's frame again; nothing is written to the arm's flash.
+CommandOutcome Home(ToolSession& s, int arm, const HomeRequest& request);
+
 }  // namespace vesica::app::calibrate

@@ -110,7 +110,7 @@ void ToolSession::Tick() {
   if (now - last_shown_ < std::chrono::milliseconds(200)) return;
   // Steps that report only their start and end: the fraction from the bus time they usually take.
   const std::optional<Step> s = StepNamed(progress_step_);
-  const double typical = s ? InfoOf(*s).typical_s : 1.0;
+  const double typical = s ? InfoOf(*s).typical_s : progress_step_ == "homing" ? 8.0 : 1.0;
   const double by_time = std::min(0.95, (progress_link_->now_s() - step_bus_start_) / typical);
   const double f = std::max(progress_fraction_, by_time);
   const double elapsed = std::chrono::duration<double>(now - step_wall_start_).count();

@@ -36,6 +36,12 @@ std::string CalibrateCommandOf(const InstrumentConfig& c, const ArmBridgeOptions
   return "vesica-calibrate" + bus + " calibrate " + std::to_string(c.can_node_id);
 }
 
+// What the technician runs for this arm when the bridge could not home it.
+std::string HomeCommandOf(const InstrumentConfig& c, const ArmBridgeOptions& o) {
+  std::string command = CalibrateCommandOf(c, o);
+  return command.replace(command.rfind(" calibrate "), 11, " home ");
+}
+
 std::unique_ptr<fp::Transport> OpenTransport(const InstrumentConfig& c, const ArmBridgeOptions& o) {
   std::string error;
   std::unique_ptr<fp::Transport> t;
@@ -108,6 +114,7 @@ ArmBridge::ArmBridge(const Scenario& scenario, const ArmBridgeOptions& options) 
     sc.name = SideOf(slot);
     sc.link = LinkOf(c, options);
     sc.calibrate_command = CalibrateCommandOf(c, options);
+    sc.home_command = HomeCommandOf(c, options);
     supervisors_[slot] = std::make_unique<device::ArmSupervisor>(*arms_[slot], sc);
     names_[slot] = c.name;
   }

@@ -16,6 +16,15 @@ CalibrationResult ArmCalibrator::Run() {
   try {
     result.identity = link_.Connect();
     link_.ClearFault();
+    // Protocol 1.4: a node not homed since power-up reads positions off by however far the arm
+    // moved while off. A whole calibration finds the frame again (range); single steps need it.
+    const bool not_homed = link_.node_not_homed();
+    if (not_homed && !(plan_.steps & kStepRange))
+      throw CalibrationAbort(AbortReason::kRefused,
+                             "node " + std::to_string(link_.node_id()) +
+                                 " is not homed since power-up (its positions are not known): run `vesica-calibrate "
+                                 "home " + std::to_string(link_.node_id()) + "` first, or a whole calibration");
+    declare_home_ = (plan_.steps & kStepRange) && (plan_.joints == 0b111 || !not_homed);
     // The node's own torque constant and ratio: the torques measured are in its units.
     for (int j = 0; j < 3; ++j) {
       const auto jj = static_cast<std::uint16_t>(j);
@@ -75,6 +84,9 @@ void ArmCalibrator::Commit(CalibrationResult& result) {
     link_.WriteF32(fp::param::kGravityCos, static_cast<float>(result.gravity_cos));
   }
   StoreLayout2Results(link_, plan_.joints, result);
+  // The range step measured this power-up's frame: the node is homed with what is saved.
+  if (declare_home_ && link_.negotiated_minor() != 0xFF && link_.negotiated_minor() >= fp::kHomingMinor)
+    link_.DeclareHome();
   link_.WriteU32(fp::param::kCalibrationDate_s, plan_.date_s);
   link_.WriteU32(fp::param::kCalibrationToolVersion, plan_.tool_version);
   link_.Save();

@@ -24,6 +24,7 @@ class ArmCalibrator {
   CalibrationLink& link_;
   CalibrationPlan plan_;
   ArmDesign design_;
+  bool declare_home_ = false;  ///< the range step finds the frame of every joint not homed
 };
 
 }  // namespace vesica::device::calibration

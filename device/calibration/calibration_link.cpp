@@ -84,6 +84,7 @@ void CalibrationLink::Handle(const fp::Message& m, fp::Nanoseconds t) {
     node_state_ = hb->state;
     heartbeat_seen_ = true;
     node_fault_ = hb->latched_fault;
+    node_not_homed_ = hb->not_homed;
   } else if (const auto* em = std::get_if<fp::Emergency>(&m)) {
     node_fault_ = em->fault;
   } else if (const auto* id = std::get_if<fp::Identity>(&m)) {
@@ -272,6 +273,11 @@ void CalibrationLink::AbortSession() noexcept {
   session_open_ = false;
   watch_faults_ = false;
   last_amps_ = {};
+}
+
+void CalibrationLink::DeclareHome() {
+  RunNodeProcedure(fp::CalibrationProcedure::Home, 0b111, 0.0, Seconds(config_.reply_timeout),
+                   [this] { return last_amps_; });
 }
 
 void CalibrationLink::StartHandSensorReadout(const std::string& what) {

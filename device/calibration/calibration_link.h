@@ -80,6 +80,12 @@ class CalibrationLink {
   std::int32_t RunNodeProcedure(fp::CalibrationProcedure procedure, std::uint8_t joint_mask, double max_current_A,
                                 double timeout_s, const std::function<std::array<double, 3>()>& command);
 
+  /// Protocol 1.4, inside the session: the position offsets now in the node's RAM are this
+  /// power-up's frame (homing found them): the node is homed and keeps them after the session.
+  void DeclareHome();
+  /// Protocol 1.4: the node's last heartbeat said it is not homed (Enable refused until it is).
+  bool node_not_homed() const { return node_not_homed_; }
+
   /// Protocol 1.2: asks the node (inside the session) for its raw hand sensors, reported every
   /// 20 ms until the session ends, and waits for the first report. Throws kProtocolTooOld for a
   /// node that negotiated less than 1.2, naming `what`.
@@ -121,6 +127,7 @@ class CalibrationLink {
   bool session_open_ = false;
   bool watch_faults_ = false;  ///< from the session's start to its save: a fault stops everything
   bool heartbeat_seen_ = false;
+  bool node_not_homed_ = false;
   fp::FaultCode node_fault_ = fp::FaultCode::None;
   fp::NodeState node_state_ = fp::NodeState::Boot;
   bool identity_seen_ = false;

@@ -184,6 +184,7 @@ EncodeError encode_payload(const Message& m, std::uint8_t* d) {
     w.raw(F::Heartbeat::state, static_cast<std::int64_t>(p->state));
     w.raw(F::Heartbeat::enabled, p->enabled);
     w.raw(F::Heartbeat::latched_fault, static_cast<std::int64_t>(p->latched_fault));
+    w.raw(F::Heartbeat::not_homed, p->not_homed);
   }
   return w.error;
 }
@@ -269,9 +270,9 @@ DecodeError decode_payload(MessageKind kind, std::uint8_t node, const std::uint8
       break;
     case MessageKind::Heartbeat: {
       Heartbeat h{node, static_cast<NodeState>(r.u8(F::Heartbeat::state)), r.flag(F::Heartbeat::enabled),
-                  static_cast<FaultCode>(r.u8(F::Heartbeat::latched_fault))};
+                  static_cast<FaultCode>(r.u8(F::Heartbeat::latched_fault)), r.flag(F::Heartbeat::not_homed)};
       const std::int64_t code = r.raw(F::Heartbeat::canopen_state);
-      if ((d[1] & 0xF0) != 0) return DecodeError::OutOfRange;  // reserved bits
+      if ((d[1] & 0xE0) != 0) return DecodeError::OutOfRange;  // reserved bits
       if (r.error == DecodeError::None && code != canopen_heartbeat_code(h.state)) return DecodeError::Inconsistent;
       out = h;
       break;

@@ -135,12 +135,12 @@ VESICA_FIELD(CurrentState, pitch, 4, WireType::I16, 0, 0, 1e-3, "A", -30, 30);
 VESICA_FIELD(CurrentState, insertion, 6, WireType::I16, 0, 0, 1e-3, "A", -30, 30);
 }  // namespace CurrentState
 namespace CalibrationCommand {
-VESICA_FIELD(CalibrationCommand, procedure, 0, WireType::U8, 0, 0, 1, "", 0, 4);
+VESICA_FIELD(CalibrationCommand, procedure, 0, WireType::U8, 0, 0, 1, "", 0, 5);
 VESICA_FIELD(CalibrationCommand, joint_mask, 1, WireType::U8, 0, 0, 1, "", 0, 7);
 VESICA_FIELD(CalibrationCommand, max_current, 2, WireType::U16, 0, 0, 1e-3, "A", 0, 30);
 }  // namespace CalibrationCommand
 namespace CalibrationProgress {
-VESICA_FIELD(CalibrationProgress, procedure, 0, WireType::U8, 0, 0, 1, "", 0, 4);
+VESICA_FIELD(CalibrationProgress, procedure, 0, WireType::U8, 0, 0, 1, "", 0, 5);
 VESICA_FIELD(CalibrationProgress, status, 1, WireType::U8, 0, 0, 1, "", 0, 4);
 VESICA_FIELD(CalibrationProgress, percent, 2, WireType::U8, 0, 0, 1, "%", 0, 100);
 VESICA_FIELD(CalibrationProgress, joint, 3, WireType::U8, 0, 0, 1, "", 0, 2);
@@ -174,6 +174,7 @@ namespace Heartbeat {
 VESICA_FIELD(Heartbeat, canopen_state, 0, WireType::U8, 0, 0, 1, "", 0, 127);
 VESICA_FIELD(Heartbeat, state, 1, WireType::U8, 0, 3, 1, "", 0, 4);
 VESICA_FIELD(Heartbeat, enabled, 1, WireType::U8, 3, 1, 1, "", 0, 1);
+VESICA_FIELD(Heartbeat, not_homed, 1, WireType::U8, 4, 1, 1, "", 0, 1);
 VESICA_FIELD(Heartbeat, latched_fault, 2, WireType::U8, 0, 0, 1, "", 0, 10);
 }  // namespace Heartbeat
 #undef VESICA_FIELD
@@ -210,7 +211,7 @@ inline constexpr const FieldSpec* kAllFields[] = {
   &fields::ParameterResponse::op, &fields::ParameterResponse::aborted, &fields::ParameterResponse::type,
   &fields::ParameterResponse::index, &fields::ParameterResponse::value,
   &fields::Heartbeat::canopen_state, &fields::Heartbeat::state, &fields::Heartbeat::enabled,
-  &fields::Heartbeat::latched_fault,
+  &fields::Heartbeat::latched_fault, &fields::Heartbeat::not_homed,
 };
 
 constexpr std::uint8_t wire_size(WireType t) {

@@ -131,6 +131,7 @@ struct Heartbeat {
   NodeState state = NodeState::Boot;
   bool enabled = false;
   FaultCode latched_fault = FaultCode::None;
+  bool not_homed = false;  // protocol 1.4: positions unknown since power-up, Enable refused until homed
 };
 
 using Message = std::variant<Nmt, EStop, Sync, Emergency, JointState, CurrentCommand, AuxState, Control,

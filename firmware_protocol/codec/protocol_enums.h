@@ -15,7 +15,10 @@ inline constexpr std::uint8_t kProtocolMajor = 1;
 // Minor 3: calibration image layout 2 (section 9): the torque-constant correction, the roll sensor
 // offset, the jaw handle's span and the pedal's travel are stored and used; a layout-1 image of an
 // older tool still boots, its missing values neutral.
-inline constexpr std::uint8_t kProtocolMinor = 3;
+// Minor 4: homing after power-up (section 11): a node whose encoders lose their position when off
+// flags "not homed" in its heartbeat and refuses Enable until a host has homed it (procedure Home).
+inline constexpr std::uint8_t kProtocolMinor = 4;
+inline constexpr std::uint8_t kHomingMinor = 4;
 inline constexpr int kJointCount = 3;  // actuated joints per arm: yaw, pitch, insertion
 
 // Node state machine (docs/protocol.md "Node state machine").
@@ -117,7 +120,10 @@ enum class AbortCode : std::uint32_t {
 // envelope; it ends in Save (kept) or anything else (the stored calibration is reloaded).
 // HandSensors (protocol 1.2): inside a session, the node reports the raw roll, jaw handle and
 // pedal sensor readings until the session ends (docs/protocol.md section 11).
-enum class CalibrationProcedure : std::uint8_t { Abort = 0, FindIndex = 1, CurrentOffset = 2, Session = 3, HandSensors = 4 };
+// Home (protocol 1.4): inside a session, after the host found each joint's frame again (lower
+// hard stop, then the reference index), it declares the position offsets in RAM this power-up's:
+// the node is homed, and they outlive the session's end.
+enum class CalibrationProcedure : std::uint8_t { Abort = 0, FindIndex = 1, CurrentOffset = 2, Session = 3, HandSensors = 4, Home = 5 };
 enum class CalibrationStatus : std::uint8_t { Idle = 0, Running = 1, Done = 2, Failed = 3, Aborted = 4 };
 
 const char* to_string(NodeState s);

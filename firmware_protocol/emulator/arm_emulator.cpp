@@ -19,6 +19,7 @@ ArmEmulator::ArmEmulator(Transport& transport, const ArmPlantParameters& params,
       origin_(transport.now()),
       next_tick_(origin_) {
   node_->emulate_firmware_minor(config.firmware_minor);
+  node_->require_homing(config.require_homing);
   ProgramFactoryFlash(*board_, params, q0, config.board.park_position, config.node_id, config.serial,
                       config.firmware_minor < kLayout2Minor ? 1 : ParameterStore::kLayoutVersion);
   node_->boot(Micros(next_tick_));
@@ -28,6 +29,12 @@ ArmEmulator::ArmEmulator(Transport& transport, const ArmPlantParameters& params,
 void ArmEmulator::Reboot() {
   node_->boot(Micros(next_tick_));
   Flush(next_tick_);
+}
+
+void ArmEmulator::PowerCycleAt(const Joint4& q) {
+  plant_->PowerUpAt(q);
+  board_->PowerUp();
+  Reboot();
 }
 
 void ArmEmulator::Flush(Nanoseconds now) {

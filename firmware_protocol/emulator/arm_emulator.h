@@ -27,6 +27,10 @@ class ArmEmulator {
     /// Firmware of this protocol minor (Node::emulate_firmware_minor): below 3 its factory slot
     /// and its saves are image layout 1, as that firmware's were.
     std::uint8_t firmware_minor = kProtocolMinor;
+    /// The node starts every boot not homed (Node::require_homing): a board whose incremental
+    /// encoders lose their position while off. Off by default: the emulated arms power up where
+    /// they were calibrated, as if their counters were battery-backed.
+    bool require_homing = false;
   };
 
   /// q0: true joint positions at power-up. The flash is programmed as the factory leaves it
@@ -39,6 +43,9 @@ class ArmEmulator {
   void RunUntil(Nanoseconds t);
   /// Power cycle: the node boots again (parameters reloaded from the emulated flash).
   void Reboot();
+  /// Power cycle with the arm moved while off to q (true joint positions): the encoders count
+  /// from there, so the stored offsets are off by the move until the arm is homed.
+  void PowerCycleAt(const Joint4& q);
 
   ArmPlant& plant() { return *plant_; }
   EmulatedBoard& board() { return *board_; }

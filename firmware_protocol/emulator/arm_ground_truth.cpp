@@ -98,4 +98,20 @@ ArmGroundTruth RandomArm(std::uint64_t seed) {
   return t;
 }
 
+Joint4 MovedWhileOff(const ArmPlantParameters& plant, const Joint4& from, double distance_rad, std::uint64_t seed) {
+  std::mt19937_64 rng(seed ^ 0x6d6f766564ULL);  // its own stream: the arm's draws stay as they are
+  Joint4 q = from;
+  for (int m = 0; m < 3; ++m) {
+    const int joint = JointOfMotor(m);
+    const double step = m < 2 ? distance_rad : 0.1 * distance_rad;
+    const double clearance = m < 2 ? 0.05 : 0.005;
+    const double sign = rng() % 2 == 0 ? 1.0 : -1.0;
+    double to = from[joint] + sign * step;
+    if (to < plant.lower_limit[joint] + clearance || to > plant.upper_limit[joint] - clearance)
+      to = from[joint] - sign * step;
+    q[joint] = to;
+  }
+  return q;
+}
+
 }  // namespace vesica::fp::emulator

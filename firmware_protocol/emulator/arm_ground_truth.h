@@ -47,4 +47,10 @@ struct ArmGroundTruth {
 /// Seeded random arm: ranges and spreads documented in the .cpp next to each draw.
 ArmGroundTruth RandomArm(std::uint64_t seed);
 
+/// Where an arm powers up after someone moved it by hand while it was off: yaw and pitch
+/// distance_rad away from `from`, insertion distance_rad / 10 m (0.07 m for 0.7), each way drawn
+/// from the seed; a move that would come within 0.05 rad (5 mm) of a stop goes the other way.
+/// Roll stays. distance_rad >= 0, at most 0.9.
+Joint4 MovedWhileOff(const ArmPlantParameters& plant, const Joint4& from, double distance_rad, std::uint64_t seed);
+
 }  // namespace vesica::fp::emulator

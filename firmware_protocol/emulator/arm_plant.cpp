@@ -51,6 +51,14 @@ ArmPlant::ArmPlant(const ArmPlantParameters& params, const Joint4& q0)
       encoders_(MakeEncoders(params, q0)),
       q_(q0) {}
 
+void ArmPlant::PowerUpAt(const Joint4& q) {
+  motors_ = {DcMotor(p_.motor[0]), DcMotor(p_.motor[1]), DcMotor(p_.motor[2])};
+  encoders_ = MakeEncoders(p_, q);
+  setpoint_A_ = {};
+  q_ = q;
+  qd_ = Joint4{};
+}
+
 double ArmPlant::JointInertia(int joint) const {
   // Hand mass (while holding) reflected through the orthogonal Jacobian columns:
   // (d cos pitch)^2, d^2, 1.

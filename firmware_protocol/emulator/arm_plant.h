@@ -44,6 +44,10 @@ class ArmPlant {
   /// The torque-constant check's fixture clamped on (or, with attached false, taken off).
   void SetReferenceLoad(const ReferenceLoad& load) { load_ = load; }
 
+  /// Power off, the arm moved to q by hand, power on: the joints at rest at q, the motors without
+  /// current, the encoders counting afresh from there (their index edges stay where they are).
+  void PowerUpAt(const Joint4& q);
+
   /// Advances the plant by dt_s in steps of at most params.step_s.
   void Advance(double dt_s);
 

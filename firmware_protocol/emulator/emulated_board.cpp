@@ -12,6 +12,15 @@ EmulatedBoard::EmulatedBoard(ArmPlant& plant, const Config& config) : plant_(pla
   last_sense_s_ = plant_.time_s();
 }
 
+void EmulatedBoard::PowerUp() {
+  const PlantSensors s = plant_.ReadSensors();
+  applied_ = JointArray{};
+  velocity_ = JointArray{};
+  last_position_ = EncoderPositions(s);
+  last_index_edges_ = s.index_edges;
+  last_sense_s_ = plant_.time_s();
+}
+
 JointArray EmulatedBoard::EncoderPositions(const PlantSensors& s) const {
   const ArmPlantParameters& p = plant_.parameters();
   JointArray out{};

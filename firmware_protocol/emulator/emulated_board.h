@@ -34,6 +34,10 @@ class EmulatedBoard {
   bool storage_read(std::size_t offset, std::uint8_t* dst, std::size_t n);
   bool storage_write(std::size_t offset, const std::uint8_t* src, std::size_t n);
 
+  /// Power on again (after ArmPlant::PowerUpAt): the velocity filter and the index edge count
+  /// start afresh; the flash keeps what it holds.
+  void PowerUp();
+
   void set_estop_input(bool open) { estop_open_ = open; }
   void set_handle_button(bool pressed) { handle_button_ = pressed; }
   /// The parameter flash (all 0xFF = blank board). Tests corrupt it or cut its power.

@@ -45,6 +45,10 @@ class Node {
   // --firmware-minor): the Identity says so, and below minor 3 the node has no layout-2
   // parameters and stores layout 1, as that firmware did. Call before boot.
   void emulate_firmware_minor(std::uint8_t minor) { max_minor_ = minor < kProtocolMinor ? minor : kProtocolMinor; }
+  // A board whose encoders lose their position while off (incremental, no battery-backed
+  // counter): from protocol 1.4 the node starts every boot not homed, flags it in its heartbeat
+  // and refuses Enable until a host has homed it (CalibrationProcedure::Home). Call before boot.
+  void require_homing(bool required) { homing_required_ = required; }
 
   // Power-on / NMT reset node: load parameters from the newest valid calibration slot, send the
   // boot-up heartbeat and Identity, enter PreOperational. No valid slot but a corrupt one latches
@@ -70,6 +74,8 @@ class Node {
   CalibrationStatus calibration_status() const { return cal_status_; }
   bool calibration_session_open() const { return session_open_; }
   int active_slot() const { return active_slot_; }  // -1: running on defaults
+  bool homed() const { return homed_; }
+  bool homing_required() const { return homing_required_ && max_minor_ >= kHomingMinor; }
   StorageResult slot_status(int s) const { return slot_status_[s]; }
   std::uint32_t slot_generation(int s) const { return slot_generation_[s]; }
 
@@ -90,6 +96,9 @@ class Node {
   void finish_calibration(CalibrationStatus status, std::int32_t result);
   JointArray session_output(const HardwareSample& s);
   void end_session(CalibrationStatus status);
+  void declare_home();
+  void keep_home_after_save();
+  bool offsets_are_home() const;
   StorageResult load_parameters();
   void reload_parameters();
   bool save_parameters();
@@ -141,6 +150,12 @@ class Node {
   std::uint64_t next_hand_us_ = 0;
   std::uint8_t session_mask_ = 0;
   float session_max_current_ = 0;
+  // Homing (protocol 1.4): whether this power-up's frame is known, and its position offsets.
+  bool homing_required_ = false;
+  bool homed_ = true;
+  bool has_home_offset_ = false;
+  bool home_declared_in_session_ = false;
+  JointArray home_offset_{};
   // Calibration slots as found at boot / after the last save.
   StorageResult slot_status_[slot::kCount] = {StorageResult::BadMagic, StorageResult::BadMagic};
   std::uint32_t slot_generation_[slot::kCount] = {};
@@ -167,6 +182,10 @@ void Node<Hw>::boot(std::uint64_t now_us) {
   session_open_ = false;
   hand_readout_ = false;
   faults_.clear_latch();
+  // The encoders count from wherever the arm is now: the stored offsets hold only if it did not move.
+  homed_ = !homing_required();
+  has_home_offset_ = false;
+  home_declared_in_session_ = false;
 
   const StorageResult loaded = load_parameters();
   std::uint32_t history[param::kFaultHistoryDepth];
@@ -267,7 +286,7 @@ void Node<Hw>::handle_control(const Control& m, std::uint64_t now_us) {
       // Explicit enable: only operational, fault-free, negotiated, E-stop loop closed, no calibration.
       if (nmt_state_ == NodeState::Operational && faults_.latched() == FaultCode::None &&
           negotiated_minor_ != 0xFF && !last_sample_.estop_input && cal_status_ != CalibrationStatus::Running &&
-          !session_open_) {
+          !session_open_ && homed_) {
         enabled_ = true;
         command_ = JointArray{};
         command_sequence_.reset();
@@ -326,6 +345,7 @@ void Node<Hw>::handle_parameter(const ParameterRequest& m) {
       if (enabled_ || cal_status_ == CalibrationStatus::Running) { abort = AbortCode::WrongState; break; }
       sync_fault_parameters();
       if (!save_parameters()) abort = AbortCode::StorageFailed;
+      else keep_home_after_save();
       // A save is how a calibration session keeps its results; a failed one keeps the old.
       if (session_open_) end_session(abort == AbortCode::None ? CalibrationStatus::Done : CalibrationStatus::Failed);
       break;
@@ -351,6 +371,16 @@ void Node<Hw>::handle_calibration(const CalibrationCommand& m, std::uint64_t now
     if (session_open_) end_session(CalibrationStatus::Aborted);
     return;
   }
+  if (m.procedure == CalibrationProcedure::Home) {
+    // Inside a session only (the host found the frame there), and only firmware that knows it.
+    if (!session_open_ || max_minor_ < kHomingMinor) {
+      queue(CalibrationProgress{node_id_, m.procedure, CalibrationStatus::Failed, 0, 0, -1});
+      return;
+    }
+    declare_home();
+    queue(CalibrationProgress{node_id_, m.procedure, CalibrationStatus::Done, 100, 0, 0});
+    return;
+  }
   if (m.procedure == CalibrationProcedure::HandSensors) {
     // Inside a session only: nothing moves, the node reports what the hand sensors read.
     if (!session_open_) {
@@ -372,6 +402,7 @@ void Node<Hw>::handle_calibration(const CalibrationCommand& m, std::uint64_t now
     // The host drives the masked joints with CurrentCommand, bounded by max_current; the
     // watchdog runs as when enabled, so a lost host ends the session within its timeout.
     session_open_ = true;
+    home_declared_in_session_ = false;
     session_mask_ = m.joint_mask;
     session_max_current_ = m.max_current;
     command_ = JointArray{};
@@ -619,10 +650,45 @@ void Node<Hw>::end_session(CalibrationStatus status) {
   command_ = JointArray{};
   applied_ = JointArray{};
   hw_.apply_currents(applied_);
-  // Unsaved: whatever the host wrote during the session goes; the stored calibration is in force.
-  if (status != CalibrationStatus::Done) reload_parameters();
+  // Unsaved: whatever the host wrote during the session goes; the stored calibration is in force,
+  // in this power-up's frame once homed.
+  if (status != CalibrationStatus::Done) {
+    reload_parameters();
+    if (homed_ && has_home_offset_)
+      for (int j = 0; j < kJointCount; ++j)
+        params_.set_internal_f32(static_cast<std::uint16_t>(param::kPositionOffset + j), home_offset_[j]);
+  }
+  home_declared_in_session_ = false;
   queue(CalibrationProgress{node_id_, CalibrationProcedure::Session, status,
                             static_cast<std::uint8_t>(status == CalibrationStatus::Done ? 100 : 0), 0, 0});
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::declare_home() {
+  homed_ = true;
+  has_home_offset_ = true;
+  home_declared_in_session_ = true;
+  for (int j = 0; j < kJointCount; ++j)
+    home_offset_[j] = params_.f32(static_cast<std::uint16_t>(param::kPositionOffset + j));
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+bool Node<Hw>::offsets_are_home() const {
+  for (int j = 0; j < kJointCount; ++j)
+    if (params_.f32(static_cast<std::uint16_t>(param::kPositionOffset + j)) != home_offset_[j]) return false;
+  return true;
+}
+
+template <VESICA_NODE_HARDWARE Hw>
+void Node<Hw>::keep_home_after_save() {
+  // Saved offsets that a host measured in this session (it declared them) are this power-up's
+  // frame; others (a restored image) are another power-up's: the arm must be homed again.
+  if (home_declared_in_session_) {
+    declare_home();
+  } else if (has_home_offset_ && !offsets_are_home()) {
+    has_home_offset_ = false;
+    homed_ = !homing_required();
+  }
 }
 
 template <VESICA_NODE_HARDWARE Hw>
@@ -764,7 +830,9 @@ void Node<Hw>::send_joint_state() {
 
 template <VESICA_NODE_HARDWARE Hw>
 void Node<Hw>::send_heartbeat() {
-  queue(Heartbeat{node_id_, state(), enabled_, faults_.latched()});
+  // Only a host that negotiated 1.4 knows the flag (older decoders reject the bit).
+  const bool flag = !homed_ && negotiated_minor_ != 0xFF && negotiated_minor_ >= kHomingMinor;
+  queue(Heartbeat{node_id_, state(), enabled_, faults_.latched(), flag});
 }
 
 template <VESICA_NODE_HARDWARE Hw>

@@ -59,6 +59,7 @@ const char* name(CalibrationProcedure p) {
     case CalibrationProcedure::CurrentOffset: return "current_offset";
     case CalibrationProcedure::Session: return "session";
     case CalibrationProcedure::HandSensors: return "hand_sensors";
+    case CalibrationProcedure::Home: return "home";
   }
   return nullptr;
 }
