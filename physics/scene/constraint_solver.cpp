@@ -19,6 +19,19 @@ void Check(const ConstraintProblem& p) {
   if (!p.delassus.allFinite() || !p.gap.allFinite() || !p.soft_compliance.allFinite())
     throw std::invalid_argument("SolveConstraints: non-finite W, W_soft or gap");
   for (Eigen::Index i = 0; i < m; ++i) {
+    if (p.kinds[static_cast<size_t>(i)] == ConstraintKind::kFriction) {
+      const size_t k = static_cast<size_t>(i);
+      if (p.normal_row.size() != static_cast<size_t>(m) || p.friction_coefficient.size() != static_cast<size_t>(m))
+        throw std::invalid_argument(
+            "SolveConstraints: friction rows need normal_row and friction_coefficient for every row");
+      if (p.normal_row[k] < 0 || p.normal_row[k] >= m ||
+          p.kinds[static_cast<size_t>(p.normal_row[k])] != ConstraintKind::kUnilateral)
+        throw std::invalid_argument("SolveConstraints: friction row " + std::to_string(i) +
+                                    " names no unilateral row as its normal (" + std::to_string(p.normal_row[k]) + ")");
+      if (!(p.friction_coefficient[k] >= 0.0) || !std::isfinite(p.friction_coefficient[k]))
+        throw std::invalid_argument("SolveConstraints: friction row " + std::to_string(i) +
+                                    " has a friction coefficient that is not finite and >= 0");
+    }
     if (p.soft_compliance[i] < 0.0)
       throw std::invalid_argument("SolveConstraints: row " + std::to_string(i) + " has negative soft compliance");
     if (!(p.delassus(i, i) + p.soft_compliance[i] > 0.0))
@@ -27,11 +40,19 @@ void Check(const ConstraintProblem& p) {
   }
 }
 
-// Violation of row i's condition at the current lambda (0 when satisfied).
-double RowError(ConstraintKind kind, double lambda, double residual) {
+// Violation of row i's condition at the current lambda (0 when satisfied). A friction row at its
+// bound slides: any residual is allowed there; inside it the row sticks exactly.
+double RowError(ConstraintKind kind, double lambda, double residual, double bound = 0) {
   if (kind == ConstraintKind::kBilateral) return std::abs(residual);
+  if (kind == ConstraintKind::kFriction) return std::abs(lambda) >= bound ? 0.0 : std::abs(residual);
   // Complementarity: a pushing row must close its gap exactly; an idle one must not penetrate.
   return lambda > 0.0 ? std::abs(residual) : std::max(0.0, -residual);
+}
+
+// mu lambda_normal for a friction row (0 for other rows).
+double FrictionBound(const ConstraintProblem& p, const Eigen::VectorXd& lambda, Eigen::Index i) {
+  if (p.kinds[static_cast<size_t>(i)] != ConstraintKind::kFriction) return 0.0;
+  return p.friction_coefficient[static_cast<size_t>(i)] * lambda[p.normal_row[static_cast<size_t>(i)]];
 }
 }  // namespace
 
@@ -48,15 +69,20 @@ ConstraintSolution SolveConstraints(const ConstraintProblem& p, const Constraint
       // Row residual without row i's own contribution, then the row's exact solution, projected.
       const double others = a.row(i).dot(out.lambda) - a(i, i) * out.lambda[i] + p.gap[i];
       double li = -others / a(i, i);
-      if (p.kinds[static_cast<size_t>(i)] == ConstraintKind::kUnilateral) li = std::max(0.0, li);
+      const ConstraintKind kind = p.kinds[static_cast<size_t>(i)];
+      if (kind == ConstraintKind::kUnilateral) li = std::max(0.0, li);
+      if (kind == ConstraintKind::kFriction) {
+        const double bound = FrictionBound(p, out.lambda, i);
+        li = std::clamp(li, -bound, bound);
+      }
       out.lambda[i] = li;
     }
     out.iterations = sweep;
     const Eigen::VectorXd residual = a * out.lambda + p.gap;
     out.max_error_m = 0.0;
     for (Eigen::Index i = 0; i < m; ++i)
-      out.max_error_m =
-          std::max(out.max_error_m, RowError(p.kinds[static_cast<size_t>(i)], out.lambda[i], residual[i]));
+      out.max_error_m = std::max(out.max_error_m, RowError(p.kinds[static_cast<size_t>(i)], out.lambda[i], residual[i],
+                                                           FrictionBound(p, out.lambda, i)));
     if (out.max_error_m <= settings.tolerance_m) break;
   }
   return out;

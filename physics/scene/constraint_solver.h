@@ -12,13 +12,19 @@
 
 namespace vesica::physics {
 
-enum class ConstraintKind { kUnilateral, kBilateral };
+/// kFriction: a tangential row of a contact; its force is held to |lambda| <= mu lambda_normal
+/// (Coulomb, per tangent direction: a pyramid for two tangents), sticking inside that bound.
+enum class ConstraintKind { kUnilateral, kBilateral, kFriction };
 
 struct ConstraintProblem {
   Eigen::MatrixXd delassus;         ///< W, m x m, symmetric positive semi-definite, m/N
   Eigen::VectorXd soft_compliance;  ///< W_soft diagonal, m entries >= 0, m/N
   Eigen::VectorXd gap;              ///< delta, m entries, metres
   std::vector<ConstraintKind> kinds;
+  /// Friction rows only (others: ignored, may be empty when there are none): the unilateral row
+  /// whose force bounds this one, and the friction coefficient mu >= 0.
+  std::vector<int> normal_row;
+  std::vector<double> friction_coefficient;
 };
 
 struct ConstraintSolverSettings {

@@ -27,6 +27,12 @@ void ValidateDissectionSettings(const DissectionSettings& s) {
   Require(s.compliance_refresh_steps >= 1, "compliance_refresh_steps", "must be >= 1");
   Require(s.compliance_adopt_steps >= 0 && s.compliance_adopt_steps < s.compliance_refresh_steps,
           "compliance_adopt_steps", "must be >= 0 and < compliance_refresh_steps");
+  Require(std::isfinite(s.obstacle_margin_m) && s.obstacle_margin_m > 0, "obstacle_margin_m", "must be > 0");
+  Require(std::isfinite(s.obstacle_max_depth_m) && s.obstacle_max_depth_m > s.max_correction_per_step_m,
+          "obstacle_max_depth_m", "must be > max_correction_per_step_m");
+  Require(std::isfinite(s.obstacle_compliance_m_per_N) && s.obstacle_compliance_m_per_N > 0,
+          "obstacle_compliance_m_per_N", "must be > 0");
+  Require(std::isfinite(s.obstacle_friction) && s.obstacle_friction >= 0, "obstacle_friction", "must be >= 0");
 }
 
 Eigen::Vector3d DirectionTowardBed(const TriangleMesh& liver, const TetrahedralMesh& gallbladder) {
@@ -48,6 +54,7 @@ Eigen::Vector3d DirectionTowardBed(const TriangleMesh& liver, const TetrahedralM
 
 std::shared_ptr<const DissectionModel> BuildDissectionModel(const DissectionModelInputs& in) {
   ValidateDissectionSettings(in.settings);
+  CheckStaticObstacles(in.obstacles);
   for (const InstrumentMount& m : in.instruments)
     Require(m.p_RemoteCentre_W.allFinite() && std::abs(m.reference_direction_W.norm() - 1.0) < 1e-9, "instrument mount",
             "needs a finite remote centre and a unit reference direction");
@@ -69,6 +76,12 @@ std::shared_ptr<const DissectionModel> BuildDissectionModel(const DissectionMode
   if (model->tissue.springs.empty())
     throw std::invalid_argument(in.gallbladder_source + ": no connective-tissue spring found within " +
                                 std::to_string(in.settings.attach_offset_m) + " m of " + in.liver_source);
+  model->obstacles = in.obstacles;
+  if (in.settings.gallbladder_rests_on_liver) {
+    // Cells of 8 mm; reach covers the margin, the depth and 10 mm of the liver's own motion.
+    const double reach_m = in.settings.obstacle_max_depth_m + in.settings.obstacle_margin_m + 0.01;
+    model->liver_proximity = SurfaceProximityGrid(in.liver_surface, reach_m, 0.008);
+  }
   return model;
 }
 

@@ -8,9 +8,11 @@
 #include <string>
 
 #include "physics/bem/bem_model.h"
+#include "physics/collision/surface_proximity_grid.h"
 #include "physics/fem/fem_model.h"
 #include "physics/mesh/mesh_topology.h"
 #include "physics/scene/dissection_settings.h"
+#include "physics/scene/static_obstacles.h"
 #include "physics/tissue/connective_tissue.h"
 
 namespace vesica::physics {
@@ -24,6 +26,8 @@ struct DissectionModel {
   ConnectiveTissue tissue;           ///< springs and membrane as created (all alive)
   AssistantRetraction retraction;    ///< the fundus's held nodes (empty: no retraction)
   Eigen::Vector3d toward_liver = Eigen::Vector3d::Zero();  ///< unit direction the springs were searched along
+  StaticObstacles obstacles;                               ///< organs the gallbladder rests on (static)
+  SurfaceProximityGrid liver_proximity;  ///< the liver's surface for the gallbladder's contact (empty: off)
 };
 
 struct DissectionModelInputs {
@@ -36,6 +40,7 @@ struct DissectionModelInputs {
   FemSettings gallbladder;  ///< its time step is replaced by settings.time_step_s
   std::array<InstrumentMount, 2> instruments;
   DissectionSettings settings;
+  StaticObstacles obstacles;  ///< the solid context organs (none: the gallbladder rests on nothing but the liver)
 };
 
 /// Validates the settings (std::invalid_argument naming the field), builds the liver BEM model

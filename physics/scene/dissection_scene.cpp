@@ -1,6 +1,7 @@
 #include "physics/scene/dissection_scene.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "physics/mesh/barycentric.h"
+#include "physics/scene/static_obstacles.h"
 #include "physics/tissue/spring_forces.h"
 
 namespace vesica::physics {
@@ -24,8 +26,10 @@ struct DissectionScene::Row {
   double gap = 0;
   ConstraintKind kind = ConstraintKind::kUnilateral;
   double soft = 0;
-  int instrument = 0;
-  int grasp_point = -1;  // index in grasp_.points(), or -1 for a contact row
+  int instrument = 0;     // -1: a gallbladder node on a static obstacle or the liver
+  int grasp_point = -1;   // index in grasp_.points(), or -1 for a contact row
+  int normal_offset = 0;  // kFriction: its normal row is this many rows before it (< 0)
+  double friction = 0;    // kFriction: Coulomb coefficient
 };
 
 namespace {
@@ -153,6 +157,57 @@ Eigen::Matrix3d DissectionScene::BlockCompliance(const Row& a, const Row& b) {
   return c;
 }
 
+std::vector<DissectionScene::Row> DissectionScene::ObstacleRows(const Vertices& gb_start, const Vertices& gb_free,
+                                                                const Vertices& liver_free) const {
+  const DissectionSettings& s = model_->settings;
+  std::vector<Row> rows;
+  if (model_->obstacles.empty() && model_->liver_proximity.empty()) return rows;
+  const Eigen::VectorXi& boundary_nodes = model_->gallbladder_boundary.surface_to_volume;
+  for (Eigen::Index k = 0; k < boundary_nodes.size(); ++k) {
+    const int node = boundary_nodes[k];
+    const Eigen::Vector3d p = gb_free.row(node).transpose();
+    std::optional<ObstacleProximity> near =
+        NearestObstacle(model_->obstacles, p, s.obstacle_margin_m, s.obstacle_max_depth_m);
+    if (!model_->liver_proximity.empty()) {
+      const double within = std::max(s.obstacle_margin_m, s.obstacle_max_depth_m);
+      const std::optional<SurfaceProximity> liver = model_->liver_proximity.Nearest(p, liver_free, within);
+      if (liver && liver->signed_distance_m <= s.obstacle_margin_m &&
+          liver->signed_distance_m > -s.obstacle_max_depth_m &&
+          (!near || liver->signed_distance_m < near->signed_distance_m))
+        near = ObstacleProximity{liver->p_Surface_W, liver->normal_W, liver->signed_distance_m};
+    }
+    if (!near) continue;
+    // The obstacle is the row's "tool": delta = d . (q - p) with d = -n is the node's signed
+    // distance, and lambda >= 0 pushes the node along +n, out of the obstacle.
+    Row r;
+    r.liver = false;
+    r.nodes = {node, node, node};
+    r.weights = Eigen::Vector3d::UnitX();
+    r.direction = -near->normal_W;
+    r.gap = std::max(near->signed_distance_m, -s.max_correction_per_step_m);
+    r.kind = ConstraintKind::kUnilateral;
+    r.soft = s.obstacle_compliance_m_per_N;
+    r.instrument = -1;
+    rows.push_back(r);
+    if (near->signed_distance_m >= 0.0 || s.obstacle_friction == 0.0) continue;
+    // Pressed (the free step took it in): two tangential rows hold it where it was at the step's
+    // start, each up to mu times the normal force (Coulomb's pyramid), so it sticks or slides.
+    const Eigen::Vector3d t1 = near->normal_W.unitOrthogonal();
+    const Eigen::Vector3d t2 = near->normal_W.cross(t1);
+    const Eigen::Vector3d slip_back = gb_start.row(node).transpose() - p;
+    for (int axis = 0; axis < 2; ++axis) {
+      Row f = r;
+      f.direction = axis == 0 ? t1 : t2;
+      f.gap = f.direction.dot(slip_back);
+      f.kind = ConstraintKind::kFriction;
+      f.normal_offset = -1 - axis;
+      f.friction = s.obstacle_friction;
+      rows.push_back(f);
+    }
+  }
+  return rows;
+}
+
 DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& poses) {
   for (int i = 0; i < 2; ++i) CheckPose(poses[static_cast<size_t>(i)], i);
   const DissectionSettings& s = model_->settings;
@@ -238,6 +293,7 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
       hit_gap[i] = hit->normal.dot(tips_[i] - hit->point);
     }
   }
+  const std::vector<Row> obstacle_rows = ObstacleRows(gallbladder_current_.vertices, gb_free, liver_free);
   lap(report.times.collision_us);
 
   // 5. Grasp / slip / release (the left instrument, when it is a grasper).
@@ -302,6 +358,7 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     r.instrument = static_cast<int>(i);
     rows.push_back(r);
   }
+  rows.insert(rows.end(), obstacle_rows.begin(), obstacle_rows.end());
   const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
   ConstraintProblem problem;
   problem.delassus.setZero(m, m);
@@ -312,6 +369,8 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     problem.soft_compliance[a] = ra.soft;
     problem.gap[a] = ra.gap;
     problem.kinds.push_back(ra.kind);
+    problem.normal_row.push_back(ra.kind == ConstraintKind::kFriction ? static_cast<int>(a) + ra.normal_offset : -1);
+    problem.friction_coefficient.push_back(ra.friction);
     for (Eigen::Index b = a; b < m; ++b) {
       const Row& rb = rows[static_cast<size_t>(b)];
       const double w = ra.direction.dot(BlockCompliance(ra, rb) * rb.direction);
@@ -363,6 +422,10 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
   std::array<std::vector<Eigen::Index>, 2> active;
   for (Eigen::Index a = 0; a < m; ++a) {
     const Row& r = rows[static_cast<size_t>(a)];
+    if (r.instrument < 0) {
+      if (r.kind == ConstraintKind::kUnilateral && lambda[a] > 0.0) ++report.obstacle_contacts;
+      continue;
+    }
     report.tool_force_N[static_cast<size_t>(r.instrument)] += r.direction * lambda[a];
     if (r.grasp_point >= 0) {
       double& f = grasp_point_forces_[static_cast<size_t>(r.grasp_point)];

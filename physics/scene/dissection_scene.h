@@ -55,6 +55,7 @@ struct DissectionStepReport {
   int gallbladder_solver_iterations = 0;     ///< PCG iterations of the gallbladder step (0: direct)
   double gallbladder_relative_residual = 0;  ///< its PCG residual |b - S du| / |b| (0: direct)
   int constraint_rows = 0;
+  int obstacle_contacts = 0;  ///< gallbladder nodes pushed by a static obstacle or the liver (lambda > 0)
   ConstraintSolution constraints;
   GraspEvents grasp;
   std::array<ToolTouch, 2> touches;
@@ -102,6 +103,10 @@ class DissectionScene {
   // (on a worker thread when `in_background`, adopted compliance_adopt_steps later).
   void UpdateAttachments(bool in_background);
   Eigen::Matrix3d BlockCompliance(const Row& a, const Row& b);
+  // One-sided rows for the gallbladder's surface nodes (at their free positions) within the margin
+  // of a static obstacle or of the liver's free surface, each pressed one followed by its two
+  // friction rows (which hold it at its position at the step's start).
+  std::vector<Row> ObstacleRows(const Vertices& gb_start, const Vertices& gb_free, const Vertices& liver_free) const;
 
   std::shared_ptr<const DissectionModel> model_;
   FemBody gallbladder_;

@@ -49,6 +49,23 @@ struct DissectionSettings {
   /// (a fixed step, so replays stay bit-identical; the step waits only if the worker is slower);
   /// 0: at once, in the step. >= 0, < compliance_refresh_steps.
   int compliance_adopt_steps = 15;
+
+  // Contact of the gallbladder's surface nodes with what does not move in the simulation (issue
+  // 30): the static obstacles (DissectionModel::obstacles) and the liver's current surface taken
+  // as static for this contact (its Green's functions are not loaded by it: the gallbladder's
+  // weight is tiny against the liver's stiffness). Each node nearer than obstacle_margin_m is a
+  // one-sided row in the constraint solve, like an instrument's contact.
+  bool gallbladder_rests_on_liver = true;  ///< the gallbladder's nodes may not enter the liver
+  double obstacle_margin_m = 0.001;        ///< a node this near a surface gets a contact row, > 0
+  /// A node deeper than this inside an obstacle or the liver is left alone (pushing it out of a
+  /// thin organ's far side would be wrong), > max_correction_per_step_m.
+  double obstacle_max_depth_m = 0.008;
+  /// W_soft of obstacle rows, > 0: the organs' surface gives 1 mm under 10 N.
+  double obstacle_compliance_m_per_N = 1e-4;
+  /// Coulomb friction coefficient of the gallbladder on organs and the liver, >= 0 (wet serosa on
+  /// serosa; 0.4 holds it on slopes up to 22 degrees): two tangential rows per pressed node in the
+  /// constraint solve; 0: no friction rows.
+  double obstacle_friction = 0.4;
 };
 
 }  // namespace vesica::physics

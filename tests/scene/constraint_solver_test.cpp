@@ -91,3 +91,47 @@ TEST(ConstraintSolverTest, BadInputNamesTheProblem) {
 
 }  // namespace
 }  // namespace vesica::physics
+
+namespace vesica::physics {
+namespace {
+
+// A point on a spring k in each direction (W = I/k, uncoupled) pressed delta_n into a surface and
+// slipped delta_t along it: the normal force is -k delta_n; friction holds the slip (-k delta_t)
+// up to mu times that, and slides at the bound beyond it.
+ConstraintProblem NormalAndFriction(double k, double delta_n, double delta_t, double mu) {
+  ConstraintProblem p;
+  p.delassus = Eigen::MatrixXd::Identity(2, 2) / k;
+  p.soft_compliance = Eigen::VectorXd::Zero(2);
+  p.gap = Eigen::Vector2d(delta_n, delta_t);
+  p.kinds = {ConstraintKind::kUnilateral, ConstraintKind::kFriction};
+  p.normal_row = {-1, 0};
+  p.friction_coefficient = {0.0, mu};
+  return p;
+}
+
+TEST(ConstraintSolverTest, FrictionSticksInsideTheConeAndSlidesAtItsBound) {
+  const double k = 100.0;
+  const ConstraintSolution stick = SolveConstraints(NormalAndFriction(k, -2e-3, 0.5e-3, 0.4));
+  EXPECT_NEAR(stick.lambda[0], 0.2, 1e-12);
+  EXPECT_NEAR(stick.lambda[1], -0.05, 1e-12);  // |0.05| < 0.4 x 0.2: the slip is undone
+  const ConstraintSolution slide = SolveConstraints(NormalAndFriction(k, -2e-3, -3e-3, 0.4));
+  EXPECT_NEAR(slide.lambda[0], 0.2, 1e-12);
+  EXPECT_NEAR(slide.lambda[1], 0.08, 1e-12);  // 0.3 N wanted, 0.4 x 0.2 N allowed
+  const ConstraintSolution apart = SolveConstraints(NormalAndFriction(k, 1e-3, -3e-3, 0.4));
+  EXPECT_EQ(apart.lambda[0], 0.0);
+  EXPECT_EQ(apart.lambda[1], 0.0);  // no normal force, no friction
+}
+
+TEST(ConstraintSolverTest, FrictionRowWithoutANormalRowIsRefused) {
+  ConstraintProblem p = NormalAndFriction(100.0, -1e-3, 0.0, 0.4);
+  p.normal_row = {-1, 1};  // itself, not a unilateral row
+  EXPECT_THROW(SolveConstraints(p), std::invalid_argument);
+  p = NormalAndFriction(100.0, -1e-3, 0.0, -0.1);
+  EXPECT_THROW(SolveConstraints(p), std::invalid_argument);
+  p = NormalAndFriction(100.0, -1e-3, 0.0, 0.4);
+  p.friction_coefficient.clear();
+  EXPECT_THROW(SolveConstraints(p), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vesica::physics
