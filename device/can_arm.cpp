@@ -455,6 +455,10 @@ ArmJoints CanArm::joints() const { std::lock_guard lock(mu_); return q_; }
 std::string CanArm::homing_problem() const { std::lock_guard lock(mu_); return homing_problem_; }
 bool CanArm::node_not_homed() const { std::lock_guard lock(mu_); return node_not_homed_; }
 std::uint32_t CanArm::homing_count() const { std::lock_guard lock(mu_); return homing_count_; }
+calibration::HomingResult CanArm::last_homing() const {
+  std::lock_guard lock(mu_);
+  return homing_running_ ? calibration::HomingResult{} : homing_result_;
+}
 fp::NodeState CanArm::node_state() const { std::lock_guard lock(mu_); return node_state_; }
 fp::FaultCode CanArm::node_fault() const { std::lock_guard lock(mu_); return node_fault_; }
 fp::FaultCode CanArm::last_emergency() const { std::lock_guard lock(mu_); return last_emergency_; }

@@ -101,6 +101,8 @@ class CanArm final : public HapticDevice {
   /// The node's heartbeat says it is not homed (protocol 1.4).
   bool node_not_homed() const;
   std::uint32_t homing_count() const;  ///< homings finished (homed) since construction
+  /// What the last finished homing found (offsets before and after, bus time, why it stopped).
+  calibration::HomingResult last_homing() const;
   fp::NodeState node_state() const;
   fp::FaultCode node_fault() const;          ///< latched fault as last reported, None if none
   fp::FaultCode last_emergency() const;      ///< fault code of the last EMCY frame seen

@@ -149,6 +149,10 @@ HomingResult HomeArm(CalibrationLink& link, const HomingPlan& plan, ArmDesign de
           return true;
         },
         30.0, "homing: the joints did not return to the centre");
+    // At rest before the session ends and the joints go free.
+    const double settle_until = link.now_s() + 0.3;
+    RunUntil(
+        link, servo, [&] { return link.now_s() >= settle_until; }, 1.0, "timer");
     // Unsaved: the stored calibration stays; the node keeps the declared offsets in force.
     link.AbortSession();
     result.homed = true;
