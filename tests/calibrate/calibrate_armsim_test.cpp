@@ -52,8 +52,8 @@ TEST(CalibrateArmsim, ScanFindsBothArmsWithIdentityVersionsStateFaultsAndSlots) 
     EXPECT_EQ(a["node"], k + 1);
     EXPECT_EQ(a["serial"], 0x5E51CA01u);  // vesica-armsim's board serial
     EXPECT_EQ(a["firmware_version"], "1.0.0");
-    EXPECT_EQ(a["protocol"], "1.3");
-    EXPECT_EQ(a["protocol_negotiated_minor"], 3);
+    EXPECT_EQ(a["protocol"], "1.4");
+    EXPECT_EQ(a["protocol_negotiated_minor"], 4);
     EXPECT_EQ(a["state"], "pre-operational");
     EXPECT_EQ(a["latched_fault"], "none");
     EXPECT_EQ(a["fault_count"], 0);

@@ -77,7 +77,7 @@ TEST(CalibrateSocketCan, ScanFindsBothArmsOnOneInterfaceAndTheLogNamesIt) {
     EXPECT_TRUE(j["arms"][k]["found"].get<bool>()) << j.dump(2);
     EXPECT_EQ(j["arms"][k]["node"], k + 1);
     EXPECT_EQ(j["arms"][k]["serial"], 0x5E51CA01u + static_cast<unsigned>(k));
-    EXPECT_EQ(j["arms"][k]["protocol"], "1.3");
+    EXPECT_EQ(j["arms"][k]["protocol"], "1.4");
   }
   std::ifstream log(j["bus_log"].get<std::string>());
   std::vector<fp::BusLogEntry> entries;
