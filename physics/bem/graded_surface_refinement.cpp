@@ -17,11 +17,14 @@ Edge Key(int a, int b) { return a < b ? Edge{a, b} : Edge{b, a}; }
 
 // One red-green pass over `tris`, growing `vertices` and `labels`; parents follow their children.
 void RefinePass(std::vector<Eigen::Vector3d>& vertices, std::vector<int>& labels, std::vector<std::array<int, 3>>& tris,
-                std::vector<int>& parents, const Eigen::Vector3d& centre, double radius) {
+                std::vector<int>& parents, const Vertices& centres, double radius) {
+  std::vector<bool> near(vertices.size(), false);
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+    near[v] = ((centres.rowwise() - vertices[v].transpose()).rowwise().squaredNorm().array() < radius * radius).any();
   std::vector<bool> red(tris.size(), false);
   for (std::size_t f = 0; f < tris.size(); ++f)
     for (int v : tris[f])
-      if ((vertices[static_cast<std::size_t>(v)] - centre).norm() < radius) red[f] = true;
+      if (near[static_cast<std::size_t>(v)]) red[f] = true;
   std::map<Edge, int> split;
   for (bool changed = true; changed;) {  // close: two or three split edges make a triangle red
     split.clear();
@@ -72,9 +75,14 @@ void RefinePass(std::vector<Eigen::Vector3d>& vertices, std::vector<int>& labels
 
 RefinedSurface RefineTowardPoint(const TriangleMesh& surface, const Eigen::Vector3d& centre_m,
                                  std::span<const double> radii_m) {
+  return RefineTowardPoints(surface, Vertices(centre_m.transpose()), radii_m);
+}
+
+RefinedSurface RefineTowardPoints(const TriangleMesh& surface, const Vertices& centres_m,
+                                  std::span<const double> radii_m) {
   for (std::size_t k = 0; k < radii_m.size(); ++k)
     if (!(std::isfinite(radii_m[k]) && radii_m[k] > 0))
-      throw MeshError("RefineTowardPoint: radius " + std::to_string(k) + " is " + std::to_string(radii_m[k]) +
+      throw MeshError("RefineTowardPoints: radius " + std::to_string(k) + " is " + std::to_string(radii_m[k]) +
                       " m; each refinement radius must be positive and finite");
   std::vector<Eigen::Vector3d> vertices;
   std::vector<int> labels;
@@ -88,7 +96,7 @@ RefinedSurface RefineTowardPoint(const TriangleMesh& surface, const Eigen::Vecto
     tris.push_back({surface.triangles(f, 0), surface.triangles(f, 1), surface.triangles(f, 2)});
     parents.push_back(f);
   }
-  for (double radius : radii_m) RefinePass(vertices, labels, tris, parents, centre_m, radius);
+  for (double radius : radii_m) RefinePass(vertices, labels, tris, parents, centres_m, radius);
 
   RefinedSurface out;
   out.surface.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);

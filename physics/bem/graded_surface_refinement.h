@@ -24,4 +24,9 @@ struct RefinedSurface {
 RefinedSurface RefineTowardPoint(const TriangleMesh& surface, const Eigen::Vector3d& centre_m,
                                  std::span<const double> radii_m);
 
+/// The same toward a region: a triangle is split when a corner lies within the radius of any of
+/// `centres_m` (k x 3), e.g. the gallbladder bed's vertices, where the tools work.
+RefinedSurface RefineTowardPoints(const TriangleMesh& surface, const Vertices& centres_m,
+                                  std::span<const double> radii_m);
+
 }  // namespace vesica::physics

@@ -1,0 +1,53 @@
+#pragma once
+// Issue 37's liver study: the hook's tip (a gallbladder-bed vertex and its one-ring, the footprint,
+// pushed in by the reference's prescribed displacement) on a liver surface, solved by the BEM
+// (capacitance solver) after `levels` passes of graded refinement toward the tip, compared with
+// the converged CalculiX reference (tool_load_reference.h).
+
+#include <Eigen/Core>
+#include <string>
+
+#include "physics/bem/bem_model.h"
+#include "physics/mesh/triangle_mesh.h"
+#include "tools/convergence/tool_load_reference.h"
+
+namespace vesica::convergence {
+
+struct LiverHookResult {
+  int vertices = 0;
+  double contact_edge_m = 0;                          ///< mean edge of the footprint's triangles: h at the tool
+  Eigen::Vector3d force_N = Eigen::Vector3d::Zero();  ///< total contact force
+  /// The contact traction integrated over the footprint's triangles only (its hat functions cut
+  /// at the footprint's edge) instead of over each contact node's whole lumped area.
+  Eigen::Vector3d footprint_force_N = Eigen::Vector3d::Zero();
+  double footprint_force_error = 0;
+  double force_error = 0;         ///< |F - F_ref| / |F_ref|
+  double displacement_error = 0;  ///< relative L2 over the trainer's free vertices off the footprint
+  double precompute_s = 0;        ///< wall clock of PrecomputeBemModel (uncached)
+};
+
+/// Where the study's liver is refined: toward the hook's tip (radii 4, 2.4, 1.44 ... footprints;
+/// the footprint's radius is the tip's longest ring edge), or, as a trainer could precompute it
+/// once for any contact there, toward the whole gallbladder bed (vertices labelled bed, radii
+/// 0.5, 0.3 ... footprints).
+enum class LiverGrading { kTowardTip, kTowardBed };
+
+/// The liver of the study's refinement level: the trainer's surface after `levels` passes.
+struct LiverHookSetup {
+  physics::TriangleMesh surface;
+  std::vector<int> contact;              ///< every vertex on the footprint's (refined) triangles
+  std::vector<int> footprint_triangles;  ///< the (refined) triangles the tool covers
+  double contact_edge_m = 0;
+};
+LiverHookSetup MakeLiverHookSetup(const physics::TriangleMesh& trainer_liver, const ToolLoadReference& ref, int levels,
+                                  LiverGrading grading = LiverGrading::kTowardTip);
+
+/// Precomputes the BEM on the setup's surface (no cache) and solves the indentation.
+LiverHookResult SolveLiverHook(const physics::TriangleMesh& trainer_liver, const ToolLoadReference& ref,
+                               const LiverHookSetup& setup);
+
+/// data/anatomy/liver.vtk and tests/bem/data/liver_hook_reference.txt under the source tree.
+physics::TriangleMesh ReadTrainerLiver(const std::string& source_dir);
+ToolLoadReference ReadLiverHookReference(const std::string& source_dir);
+
+}  // namespace vesica::convergence

@@ -1,0 +1,447 @@
+#!/usr/bin/env python3
+"""Converged continuum references for the trainer's tool loads (issue 37), made with CalculiX.
+
+Two load cases, both on the trainer's own surfaces (the geometry is kept exactly: the surface is
+only split, never moved, so every trainer vertex is a node of the reference):
+
+  liver-hook      data/anatomy/liver.vtk; the hook's tip: the liver vertex of the gallbladder bed
+                  nearest the bed's centroid and its one-ring (the footprint is the union of the
+                  triangles around it) pushed 5 mm into the surface (along the vertex normal, all
+                  three components prescribed, as the capacitance solver does); the bare area
+                  (vesica_label 1) fixed. E = 170 kPa, nu = 0.4 (gallbladder paper Table 1).
+  gallbladder-grasp
+                  data/anatomy/gallbladder_1000_surface.vtk; the grasper's jaw: a 10 x 5 mm
+                  footprint (long side along the gallbladder's axis) on the side facing away from
+                  the liver, pulled 5 mm out along its normal; the bed (surface within 6 mm of a
+                  liver vertex) fixed. E = 2.3 kPa, nu = 0.45.
+
+Each case is meshed with quadratic tets (gmsh, C3D10) graded toward the contact: the surface is
+split 1:4 (red-green, conforming) in shrinking rings around the contact, the volume grows from it.
+It is solved by ccx (linear statics) at rising refinement until the total contact force moves by
+under 1 %; the last level is written to tests/bem/data or tests/fem/data:
+
+  force_N fx fy fz            total reaction on the footprint (N), what the tool feels
+  contact i j k ...           the trainer vertices in the footprint
+  u i ux uy uz                displacement (m) of every trainer vertex
+  centre_m, jaw_long_axis     (grasp only) the jaw's centre and its long side
+
+Usage (slow: minutes; one thread, niced):
+  python3 tools/convergence/reference.py [--case liver-hook|gallbladder-grasp|all] [--keep DIR]
+"""
+
+import argparse
+import math
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+LABEL_FIXED = 1
+LABEL_BED = 2
+INDENT_M = 0.005
+BED_DISTANCE_M = 0.006
+JAW_LENGTH_M = 0.010
+JAW_WIDTH_M = 0.005
+
+
+# ---------------------------------------------------------------------------------------------
+# Reading the trainer's legacy VTK polydata (ASCII, 5.1 OFFSETS/CONNECTIVITY or the older form).
+def read_vtk_surface(path):
+    toks = pathlib.Path(path).read_text().split()
+    i = toks.index("POINTS")
+    n = int(toks[i + 1])
+    pts = [tuple(float(t) for t in toks[i + 3 + 3 * k:i + 6 + 3 * k]) for k in range(n)]
+    p = toks.index("POLYGONS")
+    if "CONNECTIVITY" in toks:
+        j = toks.index("CONNECTIVITY")
+        m = int(toks[p + 2])
+        conn = [int(t) for t in toks[j + 2:j + 2 + m]]
+        tris = [tuple(conn[3 * k:3 * k + 3]) for k in range(m // 3)]
+    else:
+        count = int(toks[p + 1])
+        tris = [tuple(int(t) for t in toks[p + 4 + 4 * k:p + 7 + 4 * k]) for k in range(count)]
+    labels = [0] * n
+    if "vesica_label" in toks:
+        k = toks.index("vesica_label")
+        labels = [int(t) for t in toks[k + 4:k + 4 + n]]
+    return pts, tris, labels
+
+
+def sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def unit(a):
+    n = math.sqrt(dot(a, a))
+    return (a[0] / n, a[1] / n, a[2] / n)
+
+
+def vertex_normal(pts, tris, v):
+    n = (0.0, 0.0, 0.0)
+    for t in tris:
+        if v in t:
+            c = cross(sub(pts[t[1]], pts[t[0]]), sub(pts[t[2]], pts[t[0]]))  # 2 x area x normal
+            n = (n[0] + c[0], n[1] + c[1], n[2] + c[2])
+    return unit(n)
+
+
+# ---------------------------------------------------------------------------------------------
+# Graded conforming refinement: triangles for which near(corners) holds are split 1:4 (red); a
+# neighbour left with one split edge is halved (green), with two or three it is split red too.
+# Each triangle carries a set of flags that its children inherit. (physics/bem/
+# graded_surface_refinement.cpp is the same pass, with near = a corner within a radius.)
+def refine(pts, tris, flags, near):
+    red = [near([pts[v] for v in t]) for t in tris]
+    while True:
+        split = set()
+        for t, r in zip(tris, red):
+            if r:
+                for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0])):
+                    split.add((min(a, b), max(a, b)))
+        changed = False
+        for k, t in enumerate(tris):
+            if red[k]:
+                continue
+            cut = sum((min(a, b), max(a, b)) in split for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0])))
+            if cut >= 2:
+                red[k] = changed = True
+        if not changed:
+            break
+    pts = list(pts)
+    mid = {}
+    for a, b in sorted(split):
+        mid[(a, b)] = len(pts)
+        pts.append(tuple(0.5 * (pts[a][c] + pts[b][c]) for c in range(3)))
+
+    def m(a, b):
+        return mid.get((min(a, b), max(a, b)))
+
+    out_t, out_f = [], []
+    for t, f, r in zip(tris, flags, red):
+        a, b, c = t
+        if r:
+            ab, bc, ca = m(a, b), m(b, c), m(c, a)
+            children = [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
+        else:
+            children = [t]
+            for (p, q, o) in ((a, b, c), (b, c, a), (c, a, b)):
+                x = m(p, q)
+                if x is not None:
+                    children = [(p, x, o), (x, q, o)]
+        out_t += children
+        out_f += [f] * len(children)
+    return pts, out_t, out_f
+
+
+def segment_distance(p, a, b):
+    ab, ap = sub(b, a), sub(p, a)
+    s = max(0.0, min(1.0, dot(ap, ab) / dot(ab, ab)))
+    return math.dist(p, tuple(a[k] + s * ab[k] for k in range(3)))
+
+
+# ---------------------------------------------------------------------------------------------
+# gmsh: quadratic tets from the refined surface (kept as is), sizes growing away from the contact.
+def mesh_volume(work, pts, tris, centre, size_near, size_far, reach):
+    stl = work / "surface.stl"
+    with open(stl, "w") as f:
+        f.write("solid s\n")
+        for t in tris:
+            n = unit(cross(sub(pts[t[1]], pts[t[0]]), sub(pts[t[2]], pts[t[0]])))
+            f.write(f"facet normal {n[0]:.9e} {n[1]:.9e} {n[2]:.9e}\nouter loop\n")
+            for v in t:
+                f.write(f"vertex {pts[v][0]:.12e} {pts[v][1]:.12e} {pts[v][2]:.12e}\n")
+            f.write("endloop\nendfacet\n")
+        f.write("endsolid s\n")
+    geo = work / "volume.geo"
+    geo.write_text(f"""Merge "surface.stl";
+Surface Loop(1) = {{1}};
+Volume(1) = {{1}};
+Physical Volume(1) = {{1}};
+Point(100000) = {{{centre[0]:.12e}, {centre[1]:.12e}, {centre[2]:.12e}}};
+Field[1] = Distance; Field[1].PointsList = {{100000}};
+Field[2] = Threshold; Field[2].InField = 1; Field[2].SizeMin = {size_near:.6e}; Field[2].SizeMax = {size_far:.6e};
+Field[2].DistMin = {size_near:.6e}; Field[2].DistMax = {reach:.6e};
+Background Field = 2;
+Mesh.MeshSizeExtendFromBoundary = 1;
+Mesh.ElementOrder = 2;
+Mesh.SecondOrderLinear = 1;
+Mesh.Optimize = 1;
+Mesh.MshFileVersion = 2.2;
+General.NumThreads = 1;
+""")
+    run(["gmsh", "-3", "-nt", "1", "-format", "msh22", "-o", "volume.msh", "volume.geo"], work)
+    nodes, tets = {}, []
+    lines = (work / "volume.msh").read_text().split("\n")
+    i = lines.index("$Nodes")
+    for line in lines[i + 2:i + 2 + int(lines[i + 1])]:
+        w = line.split()
+        nodes[int(w[0])] = (float(w[1]), float(w[2]), float(w[3]))
+    i = lines.index("$Elements")
+    for line in lines[i + 2:i + 2 + int(lines[i + 1])]:
+        w = [int(x) for x in line.split()]
+        if w[1] == 11:  # 10-node tet; gmsh's last two edge nodes are ccx's swapped
+            c = w[3 + w[2]:]
+            tets.append(c[:8] + [c[9], c[8]])
+    return nodes, tets
+
+
+def run(cmd, cwd):
+    env = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1")
+    r = subprocess.run(["nice", "-n", "10"] + cmd, cwd=cwd, env=env, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed in {cwd}:\n{r.stdout[-3000:]}\n{r.stderr[-3000:]}")
+    return r.stdout
+
+
+def key(p):
+    return (round(p[0] * 1e7), round(p[1] * 1e7), round(p[2] * 1e7))
+
+
+class NodeIndex:
+    """gmsh node ids by position (0.1 um cells, neighbours searched: no rounding-edge misses)."""
+
+    def __init__(self, nodes):
+        self.cells = {}
+        for i, p in nodes.items():
+            self.cells.setdefault(key(p), []).append((i, p))
+
+    def __getitem__(self, p):
+        k = key(p)
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                for dz in (-1, 0, 1):
+                    for i, q in self.cells.get((k[0] + dx, k[1] + dy, k[2] + dz), []):
+                        if math.dist(p, q) < 1e-7:
+                            return i
+        raise KeyError(f"no mesh node at {p}: gmsh changed the surface mesh")
+
+
+def region_nodes(pts, tris, flags, flag, index):
+    """gmsh nodes (corners and edge midpoints) on the triangles carrying `flag`."""
+    out = set()
+    for t, f in zip(tris, flags):
+        if flag in f:
+            for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0])):
+                out.add(index[pts[a]])
+                out.add(index[tuple(0.5 * (pts[a][c] + pts[b][c]) for c in range(3))])
+    return out
+
+
+def solve_ccx(work, nodes, tets, fixed, contact, displacement, youngs_Pa, poisson, trainer_nodes):
+    with open(work / "job.inp", "w") as f:
+        f.write("*NODE\n")
+        for i, p in nodes.items():
+            f.write(f"{i},{p[0]:.12e},{p[1]:.12e},{p[2]:.12e}\n")
+        f.write("*ELEMENT, TYPE=C3D10, ELSET=EALL\n")
+        for k, t in enumerate(tets, 1):
+            f.write(f"{k}," + ",".join(map(str, t)) + "\n")
+
+        def nset(name, ids):
+            f.write(f"*NSET, NSET={name}\n")
+            ids = sorted(ids)
+            for s in range(0, len(ids), 12):
+                f.write(",".join(map(str, ids[s:s + 12])) + ",\n")
+
+        nset("NFIXED", fixed)
+        nset("NCONTACT", contact)
+        nset("NTRAINER", trainer_nodes)
+        f.write(f"*MATERIAL, NAME=TISSUE\n*ELASTIC\n{youngs_Pa},{poisson}\n")
+        f.write("*SOLID SECTION, ELSET=EALL, MATERIAL=TISSUE\n*STEP\n*STATIC\n*BOUNDARY\nNFIXED,1,3,0.\n")
+        for c in range(3):
+            f.write(f"NCONTACT,{c + 1},{c + 1},{displacement[c]:.12e}\n")
+        f.write("*NODE PRINT, NSET=NCONTACT, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=NTRAINER\nU\n*END STEP\n")
+    run(["ccx", "-i", "job"], work)
+    lines = (work / "job.dat").read_text().split("\n")
+    force, u = None, {}
+    for i, line in enumerate(lines):
+        if line.strip().startswith("total force") and "NCONTACT" in line:
+            force = tuple(float(x) for x in lines[i + 2].split())
+        if line.strip().startswith("displacements") and "NTRAINER" in line:
+            for row in lines[i + 2:]:
+                w = row.split()
+                if len(w) != 4:
+                    break
+                u[int(w[0])] = tuple(float(x) for x in w[1:])
+    if force is None or not u:
+        sys.exit(f"could not read the force and displacements from {work / 'job.dat'}")
+    return force, u
+
+
+# ---------------------------------------------------------------------------------------------
+def liver_case():
+    pts, tris, labels = read_vtk_surface(ROOT / "data/anatomy/liver.vtk")
+    bed = [v for v in range(len(pts)) if labels[v] & LABEL_BED]
+    centroid = tuple(sum(pts[v][c] for v in bed) / len(bed) for c in range(3))
+    ring_ok = lambda v: all(not (labels[w] & LABEL_FIXED) for t in tris if v in t for w in t)
+    tip = min((v for v in bed if ring_ok(v)), key=lambda v: math.dist(pts[v], centroid))
+    normal = vertex_normal(pts, tris, tip)
+    flags = []
+    for t in tris:
+        f = set()
+        if tip in t:
+            f.add("contact")
+        if all(labels[v] & LABEL_FIXED for v in t):
+            f.add("fixed")
+        flags.append(f)
+    fixed_vertices = [v for v in range(len(pts)) if labels[v] & LABEL_FIXED]
+    contact_vertices = sorted({v for t in tris if tip in t for v in t})
+    edge = max(math.dist(pts[tip], pts[v]) for v in contact_vertices)
+    rim = [tuple(v for v in t if v != tip) for t in tris if tip in t]
+    rim = [(pts[a], pts[b]) for a, b in rim]
+    return dict(name="liver-hook", source="data/anatomy/liver.vtk", pts=pts, tris=tris, flags=flags,
+                fixed_vertices=fixed_vertices, contact_vertices=contact_vertices, centre=pts[tip],
+                displacement=tuple(-INDENT_M * c for c in normal), youngs_Pa=170e3, poisson=0.4,
+                footprint_m=edge, edge_distance=lambda q: min(segment_distance(q, a, b) for a, b in rim),
+                out=ROOT / "tests/bem/data/liver_hook_reference.txt",
+                note=f"hook tip at liver vertex {tip} and its one-ring, {INDENT_M * 1e3:g} mm into the surface")
+
+
+def gallbladder_case():
+    pts, tris, _ = read_vtk_surface(ROOT / "data/anatomy/gallbladder_1000_surface.vtk")
+    lpts, _, _ = read_vtk_surface(ROOT / "data/anatomy/liver.vtk")
+    near_liver = [min(math.dist(p, q) for q in lpts) < BED_DISTANCE_M for p in pts]
+    # Axis: the principal direction of the surface points (power iteration on the covariance).
+    centroid = tuple(sum(p[c] for p in pts) / len(pts) for c in range(3))
+    cov = [[sum((p[a] - centroid[a]) * (p[b] - centroid[b]) for p in pts) for b in range(3)] for a in range(3)]
+    axis = (1.0, 0.3, 0.2)
+    for _ in range(200):
+        axis = unit(tuple(dot(cov[a], axis) for a in range(3)))
+    liver_centroid = tuple(sum(p[c] for p in lpts if True) / len(lpts) for c in range(3))
+    bed_points = [p for p, n in zip(pts, near_liver) if n]
+    bed_centroid = tuple(sum(p[c] for p in bed_points) / len(bed_points) for c in range(3))
+    away = unit(sub(centroid, bed_centroid))
+    # The jaw's centre: the surface vertex farthest from the bed across the axis (mid-body).
+    grasp = max(range(len(pts)), key=lambda v: dot(sub(pts[v], centroid), away) - abs(dot(sub(pts[v], centroid), axis)))
+    normal = vertex_normal(pts, tris, grasp)
+    along = unit(sub(axis, tuple(dot(axis, normal) * c for c in normal)))
+    across = cross(normal, along)
+    del liver_centroid
+
+    def edge_distance(p):
+        d = sub(p, pts[grasp])
+        x, y = abs(dot(d, along)) - 0.5 * JAW_LENGTH_M, abs(dot(d, across)) - 0.5 * JAW_WIDTH_M
+        return math.hypot(max(x, 0.0), max(y, 0.0)) if x > 0 or y > 0 else -max(x, y)
+
+    def in_jaw(p):
+        d = sub(p, pts[grasp])
+        return abs(dot(d, along)) <= 0.5 * JAW_LENGTH_M and abs(dot(d, across)) <= 0.5 * JAW_WIDTH_M and dot(d, normal) > -0.004
+
+    flags = []
+    for t in tris:
+        f = set()
+        if all(near_liver[v] for v in t):
+            f.add("fixed")
+        flags.append(f)
+    fixed_vertices = [v for v in range(len(pts)) if near_liver[v]]
+    contact_vertices = [v for v in range(len(pts)) if in_jaw(pts[v])]
+    return dict(name="gallbladder-grasp", source="data/anatomy/gallbladder_1000_surface.vtk", pts=pts, tris=tris,
+                flags=flags, fixed_vertices=fixed_vertices, contact_vertices=contact_vertices, centre=pts[grasp],
+                displacement=tuple(INDENT_M * c for c in normal), youngs_Pa=2.3e3, poisson=0.45, in_jaw=in_jaw,
+                edge_distance=edge_distance,
+                footprint_m=JAW_WIDTH_M, extra={"centre_m": pts[grasp], "jaw_long_axis": along},
+                out=ROOT / "tests/fem/data/gallbladder_grasp_reference.txt",
+                note=(f"jaw {JAW_LENGTH_M * 1e3:g} x {JAW_WIDTH_M * 1e3:g} mm centred at vertex {grasp}, long side "
+                      f"({along[0]:.6f} {along[1]:.6f} {along[2]:.6f}), pulled {INDENT_M * 1e3:g} mm along its normal; "
+                      f"bed: surface within {BED_DISTANCE_M * 1e3:g} mm of a liver vertex"))
+
+
+def solve_level(case, level, work):
+    """Level L: L passes of 1:4 splitting, each of the triangles within a band around the
+    footprint's edge (where the traction is singular) that halves each pass (2, 1, 1/2 ...
+    footprints, plus half the triangle's own size so that a large triangle across the edge is
+    caught); tets grade from the finest surface size at the contact to 12 mm."""
+    pts, tris, flags = case["pts"], case["tris"], case["flags"]
+    n_trainer = len(pts)
+    band = 2.0 * case["footprint_m"]
+    for _ in range(level):
+        def near(corners, band=band):
+            size = max(math.dist(corners[a], corners[b]) for a, b in ((0, 1), (1, 2), (2, 0)))
+            samples = corners + [tuple(sum(c[k] for c in corners) / 3 for k in range(3))]
+            return min(case["edge_distance"](q) for q in samples) < band + 0.5 * size
+        pts, tris, flags = refine(pts, tris, flags, near)
+        band *= 0.5
+    if "in_jaw" in case:  # the jaw: refined triangles whose centroid lies in the footprint
+        flags = [f | {"contact"} if case["in_jaw"](tuple(sum(pts[v][c] for v in t) / 3 for c in range(3))) else f
+                 for t, f in zip(tris, flags)]
+    size_near = min(math.dist(pts[t[0]], pts[t[1]]) for t, f in zip(tris, flags) if "contact" in f)
+    nodes, tets = mesh_volume(work, pts, tris, case["centre"], size_near, 0.012, 0.06)
+    index = NodeIndex(nodes)
+    fixed = region_nodes(pts, tris, flags, "fixed", index) | {index[pts[v]] for v in case["fixed_vertices"]}
+    contact = region_nodes(pts, tris, flags, "contact", index)
+    if "in_jaw" not in case:
+        contact |= {index[pts[v]] for v in case["contact_vertices"]}
+    trainer_nodes = [index[pts[v]] for v in range(n_trainer)]
+    force, u = solve_ccx(work, nodes, tets, fixed, contact, case["displacement"], case["youngs_Pa"],
+                         case["poisson"], trainer_nodes)
+    return force, [u[i] for i in trainer_nodes], len(nodes), len(tets)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--case", default="all", choices=["all", "liver-hook", "gallbladder-grasp"])
+    parser.add_argument("--keep", help="keep the meshes and ccx files under this folder")
+    parser.add_argument("--max-level", type=int, default=6)
+    args = parser.parse_args()
+    for tool in ("gmsh", "ccx"):
+        if shutil.which(tool) is None:
+            sys.exit(f"{tool} not found: apt-get install calculix-ccx gmsh (scripts/deps.txt)")
+    cases = [liver_case, gallbladder_case]
+    if args.case != "all":
+        cases = [liver_case if args.case == "liver-hook" else gallbladder_case]
+    for make in cases:
+        case = make()
+        history, previous = [], None
+        for level in range(args.max_level + 1):
+            work = pathlib.Path(args.keep) / f"{case['name']}-{level}" if args.keep else pathlib.Path(tempfile.mkdtemp())
+            work.mkdir(parents=True, exist_ok=True)
+            force, u, n_nodes, n_tets = solve_level(case, level, work)
+            magnitude = math.sqrt(dot(force, force))
+            change = abs(magnitude - previous) / magnitude if previous else float("nan")
+            history.append((level, n_nodes, n_tets, magnitude, change))
+            print(f"{case['name']} level {level}: {n_nodes} nodes, {n_tets} C3D10, |F| = {magnitude:.6g} N, "
+                  f"change {100 * change:.2f} %", flush=True)
+            if not args.keep:
+                shutil.rmtree(work)
+            if previous and change < 0.01:
+                break
+            previous = magnitude
+        else:
+            sys.exit(f"{case['name']}: not converged to 1 % by level {args.max_level}")
+        case["out"].parent.mkdir(parents=True, exist_ok=True)
+        with open(case["out"], "w") as f:
+            f.write(f"# Converged reference for issue 37 ({case['name']}): {case['note']}.\n")
+            f.write(f"# Made by: python3 tools/convergence/reference.py --case {case['name']}\n")
+            f.write(f"# Surface: {case['source']} (its vertex order); CalculiX {ccx_version()} C3D10, "
+                    f"E = {case['youngs_Pa']:g} Pa, nu = {case['poisson']:g}, linear statics.\n")
+            f.write("# Refinement (level, nodes, tets, |F| N, change):\n")
+            for level, n, t, mag, ch in history:
+                f.write(f"#   {level} {n} {t} {mag:.6g} {ch:.4f}\n")
+            f.write(f"prescribed_m {' '.join(f'{c:.9e}' for c in case['displacement'])}\n")
+            for name, value in case.get("extra", {}).items():
+                f.write(f"{name} {' '.join(f'{c:.9e}' for c in value)}\n")
+            f.write(f"force_N {' '.join(f'{c:.9e}' for c in force)}\n")
+            f.write("contact " + " ".join(map(str, case["contact_vertices"])) + "\n")
+            for v, d in enumerate(u):
+                f.write(f"u {v} {d[0]:.9e} {d[1]:.9e} {d[2]:.9e}\n")
+        print(f"wrote {case['out'].relative_to(ROOT)}")
+
+
+def ccx_version():
+    r = subprocess.run(["ccx", "-v"], capture_output=True, text=True)
+    words = (r.stdout + r.stderr).split()
+    return words[words.index("Version") + 1] if "Version" in words else "?"
+
+
+if __name__ == "__main__":
+    main()
