@@ -48,7 +48,27 @@ SurfaceProximityGrid::SurfaceProximityGrid(const TriangleMesh& rest, double reac
   for (const auto& list : lists) cell_triangles_.insert(cell_triangles_.end(), list.begin(), list.end());
 }
 
-std::optional<SurfaceProximity> SurfaceProximityGrid::Nearest(const Eigen::Vector3d& p_W, const Vertices& vertices,
+SurfaceProximityGrid::Frame SurfaceProximityGrid::MakeFrame(const Vertices& vertices) const {
+  Frame frame;
+  frame.vertices = &vertices;
+  const Eigen::Index n = triangles_.rows();
+  frame.centres.resize(n, 3);
+  frame.normals.resize(n, 3);
+  frame.radii.resize(n);
+  for (Eigen::Index f = 0; f < n; ++f) {
+    const Eigen::Vector3d a = vertices.row(triangles_(f, 0)).transpose();
+    const Eigen::Vector3d b = vertices.row(triangles_(f, 1)).transpose();
+    const Eigen::Vector3d c = vertices.row(triangles_(f, 2)).transpose();
+    const Eigen::Vector3d centre = (a + b + c) / 3.0;
+    frame.centres.row(f) = centre.transpose();
+    frame.radii[f] =
+        std::sqrt(std::max({(a - centre).squaredNorm(), (b - centre).squaredNorm(), (c - centre).squaredNorm()}));
+    frame.normals.row(f) = (b - a).cross(c - a).normalized().transpose();
+  }
+  return frame;
+}
+
+std::optional<SurfaceProximity> SurfaceProximityGrid::Nearest(const Eigen::Vector3d& p_W, const Frame& frame,
                                                               double max_distance_m) const {
   if (empty()) return std::nullopt;
   int cell = 0;
@@ -57,17 +77,20 @@ std::optional<SurfaceProximity> SurfaceProximityGrid::Nearest(const Eigen::Vecto
     if (!(u >= 0.0 && u < cells_[a])) return std::nullopt;  // outside the grid: farther than reach
     cell = cell * cells_[a] + static_cast<int>(u);
   }
+  const Vertices& vertices = *frame.vertices;
   std::optional<SurfaceProximity> best;
   double best_distance = max_distance_m;
   for (int k = cell_start_[static_cast<size_t>(cell)]; k < cell_start_[static_cast<size_t>(cell) + 1]; ++k) {
     const int f = cell_triangles_[static_cast<size_t>(k)];
+    // No point of the triangle is nearer than its bounding sphere.
+    if ((p_W - frame.centres.row(f).transpose()).norm() - frame.radii[f] > best_distance) continue;
     const Eigen::Vector3d a = vertices.row(triangles_(f, 0)).transpose();
     const Eigen::Vector3d b = vertices.row(triangles_(f, 1)).transpose();
     const Eigen::Vector3d c = vertices.row(triangles_(f, 2)).transpose();
     const TrianglePoint cp = ClosestPointOnTriangle(p_W, a, b, c);
     const double distance = (p_W - cp.point).norm();
     if (distance > best_distance) continue;
-    const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+    const Eigen::Vector3d n = frame.normals.row(f).transpose();
     if (best && distance == best_distance) {
       // A tie (the point nearest an edge or vertex): keep the triangle facing the point most squarely.
       if (std::abs(n.dot(p_W - cp.point)) <= std::abs(best->normal_W.dot(p_W - cp.point))) continue;

@@ -31,12 +31,21 @@ class SurfaceProximityGrid {
   bool empty() const { return triangles_.rows() == 0; }
   double reach_m() const { return reach_m_; }
 
+  /// Each triangle's bounding sphere and unit normal at the surface's current vertices (#V x 3),
+  /// computed once per step and shared by that step's queries (they skip triangles whose sphere
+  /// is farther than the best distance found so far).
+  struct Frame {
+    const Vertices* vertices = nullptr;
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> centres, normals;
+    Eigen::VectorXd radii;
+  };
+  Frame MakeFrame(const Vertices& vertices) const;
+
   /// The surface point nearest to p_W among triangles within reach, with |signed distance| <=
-  /// max_distance_m (<= reach_m), or nothing. `vertices`: the surface's current #V x 3 positions.
-  /// The sign is that of (p - closest) . n of the nearest triangle (exact away from edges; at a
-  /// convex or concave edge any adjacent triangle gives the same sign).
-  std::optional<SurfaceProximity> Nearest(const Eigen::Vector3d& p_W, const Vertices& vertices,
-                                          double max_distance_m) const;
+  /// max_distance_m (<= reach_m), or nothing, on the surface as `frame` has it. The sign is that
+  /// of (p - closest) . n of the nearest triangle (exact away from edges; at a convex or concave
+  /// edge any adjacent triangle gives the same sign).
+  std::optional<SurfaceProximity> Nearest(const Eigen::Vector3d& p_W, const Frame& frame, double max_distance_m) const;
 
  private:
   Triangles triangles_;

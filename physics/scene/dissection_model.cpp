@@ -78,9 +78,10 @@ std::shared_ptr<const DissectionModel> BuildDissectionModel(const DissectionMode
                                 std::to_string(in.settings.attach_offset_m) + " m of " + in.liver_source);
   model->obstacles = in.obstacles;
   if (in.settings.gallbladder_rests_on_liver) {
-    // Cells of 8 mm; reach covers the margin, the depth and 10 mm of the liver's own motion.
-    const double reach_m = in.settings.obstacle_max_depth_m + in.settings.obstacle_margin_m + 0.01;
-    model->liver_proximity = SurfaceProximityGrid(in.liver_surface, reach_m, 0.008);
+    // Cells of 5 mm; reach covers the margin, the depth and 4 mm of the liver's own motion (its
+    // surface moves less under the springs and tools; measured 1-2 mm in the committed replay).
+    const double reach_m = in.settings.obstacle_max_depth_m + in.settings.obstacle_margin_m + 0.004;
+    model->liver_proximity = SurfaceProximityGrid(in.liver_surface, reach_m, 0.005);
   }
   return model;
 }

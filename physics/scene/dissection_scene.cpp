@@ -163,6 +163,8 @@ std::vector<DissectionScene::Row> DissectionScene::ObstacleRows(const Vertices& 
   std::vector<Row> rows;
   if (model_->obstacles.empty() && model_->liver_proximity.empty()) return rows;
   const Eigen::VectorXi& boundary_nodes = model_->gallbladder_boundary.surface_to_volume;
+  SurfaceProximityGrid::Frame liver_frame;
+  if (!model_->liver_proximity.empty()) liver_frame = model_->liver_proximity.MakeFrame(liver_free);
   for (Eigen::Index k = 0; k < boundary_nodes.size(); ++k) {
     const int node = boundary_nodes[k];
     const Eigen::Vector3d p = gb_free.row(node).transpose();
@@ -170,7 +172,7 @@ std::vector<DissectionScene::Row> DissectionScene::ObstacleRows(const Vertices& 
         NearestObstacle(model_->obstacles, p, s.obstacle_margin_m, s.obstacle_max_depth_m);
     if (!model_->liver_proximity.empty()) {
       const double within = std::max(s.obstacle_margin_m, s.obstacle_max_depth_m);
-      const std::optional<SurfaceProximity> liver = model_->liver_proximity.Nearest(p, liver_free, within);
+      const std::optional<SurfaceProximity> liver = model_->liver_proximity.Nearest(p, liver_frame, within);
       if (liver && liver->signed_distance_m <= s.obstacle_margin_m &&
           liver->signed_distance_m > -s.obstacle_max_depth_m &&
           (!near || liver->signed_distance_m < near->signed_distance_m))

@@ -59,7 +59,7 @@ struct DissectionSettings {
   double obstacle_margin_m = 0.001;        ///< a node this near a surface gets a contact row, > 0
   /// A node deeper than this inside an obstacle or the liver is left alone (pushing it out of a
   /// thin organ's far side would be wrong), > max_correction_per_step_m.
-  double obstacle_max_depth_m = 0.008;
+  double obstacle_max_depth_m = 0.005;
   /// W_soft of obstacle rows, > 0: the organs' surface gives 1 mm under 10 N.
   double obstacle_compliance_m_per_N = 1e-4;
   /// Coulomb friction coefficient of the gallbladder on organs and the liver, >= 0 (wet serosa on

@@ -128,6 +128,7 @@ TEST(SurfaceProximityGrid, MatchesBruteForceOverEveryTriangle) {
   Vertices moved = sphere.vertices;
   moved.col(1) *= 0.9;
   moved.col(0).array() += 0.004;
+  const SurfaceProximityGrid::Frame frame = grid.MakeFrame(moved);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-0.045, 0.045);
   int found = 0;
@@ -141,7 +142,7 @@ TEST(SurfaceProximityGrid, MatchesBruteForceOverEveryTriangle) {
                                                       moved.row(sphere.triangles(f, 2)).transpose());
       if ((p - cp.point).norm() < best) best = (p - cp.point).norm(), best_f = f;
     }
-    const auto near = grid.Nearest(p, moved, 0.006);
+    const auto near = grid.Nearest(p, frame, 0.006);
     if (best > 0.006) {
       EXPECT_FALSE(near) << "point " << k;
       continue;
