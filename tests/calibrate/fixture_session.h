@@ -85,27 +85,9 @@ class FixtureArmsim {
 inline ToolRun RunToolAnswering(const std::vector<std::string>& args,
                                 const std::function<std::string(const std::string& line)>& answer) {
   ToolRun r;
-  int in[2], out[2], err[2];
-  if (pipe(in) || pipe(out) || pipe(err)) return r;
-  posix_spawn_file_actions_t a;
-  posix_spawn_file_actions_init(&a);
-  posix_spawn_file_actions_adddup2(&a, in[0], STDIN_FILENO);
-  posix_spawn_file_actions_adddup2(&a, out[1], STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&a, err[1], STDERR_FILENO);
-  for (int fd : {in[1], out[0], err[0]}) posix_spawn_file_actions_addclose(&a, fd);
-  std::vector<std::string> all{VESICA_CALIBRATE_PATH};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& s : all) argv.push_back(s.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, VESICA_CALIBRATE_PATH, &a, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&a);
-  close(in[0]);
-  close(out[1]);
-  close(err[1]);
-  if (rc != 0) return r;
-  pollfd fds[2] = {{out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
+  const SpawnedTool t = SpawnTool(args);
+  if (t.pid < 0) return r;
+  pollfd fds[2] = {{t.out, POLLIN, 0}, {t.err, POLLIN, 0}};
   int open_fds = 2;
   std::string partial;
   char buf[4096];
@@ -126,14 +108,12 @@ inline ToolRun RunToolAnswering(const std::vector<std::string>& args,
       for (auto end = partial.find('\n'); end != std::string::npos; end = partial.find('\n')) {
         const std::string reply = answer(partial.substr(0, end));
         partial.erase(0, end + 1);
-        if (!reply.empty()) (void)!write(in[1], reply.data(), reply.size());
+        if (!reply.empty()) (void)!write(t.in, reply.data(), reply.size());
       }
     }
   }
-  close(in[1]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  close(t.in);
+  r.exit_code = WaitTool(t.pid);
   return r;
 }
 

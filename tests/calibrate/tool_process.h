@@ -28,11 +28,17 @@ struct ToolRun {
   nlohmann::json json() const { return nlohmann::json::parse(out); }
 };
 
-inline ToolRun RunTool(const std::vector<std::string>& args, const std::string& stdin_text = "",
-                       const std::string& interrupt_on = "") {
-  ToolRun r;
+/// vesica-calibrate started as a child, its standard input, output and error on pipes whose
+/// parent ends are `in`, `out` and `err`; pid -1 (and no pipes) when it could not start.
+struct SpawnedTool {
+  pid_t pid = -1;
+  int in = -1, out = -1, err = -1;
+};
+
+inline SpawnedTool SpawnTool(const std::vector<std::string>& args) {
+  SpawnedTool t;
   int in[2], out[2], err[2];
-  if (pipe(in) || pipe(out) || pipe(err)) return r;
+  if (pipe(in) || pipe(out) || pipe(err)) return t;
   posix_spawn_file_actions_t a;
   posix_spawn_file_actions_init(&a);
   posix_spawn_file_actions_adddup2(&a, in[0], STDIN_FILENO);
@@ -44,16 +50,38 @@ inline ToolRun RunTool(const std::vector<std::string>& args, const std::string& 
   std::vector<char*> argv;
   for (auto& s : all) argv.push_back(s.data());
   argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, VESICA_CALIBRATE_PATH, &a, nullptr, argv.data(), environ);
+  const int rc = posix_spawn(&t.pid, VESICA_CALIBRATE_PATH, &a, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&a);
   close(in[0]);
   close(out[1]);
   close(err[1]);
-  if (rc != 0) return r;
-  if (!stdin_text.empty()) (void)!write(in[1], stdin_text.data(), stdin_text.size());
-  close(in[1]);
-  pollfd fds[2] = {{out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
+  if (rc != 0) {
+    for (int fd : {in[1], out[0], err[0]}) close(fd);
+    t.pid = -1;
+    return t;
+  }
+  t.in = in[1];
+  t.out = out[0];
+  t.err = err[0];
+  return t;
+}
+
+/// Waits for the child to end: its exit code, -1 if it did not exit normally.
+inline int WaitTool(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+inline ToolRun RunTool(const std::vector<std::string>& args, const std::string& stdin_text = "",
+                       const std::string& interrupt_on = "") {
+  ToolRun r;
+  const SpawnedTool t = SpawnTool(args);
+  if (t.pid < 0) return r;
+  const pid_t pid = t.pid;
+  if (!stdin_text.empty()) (void)!write(t.in, stdin_text.data(), stdin_text.size());
+  close(t.in);
+  pollfd fds[2] = {{t.out, POLLIN, 0}, {t.err, POLLIN, 0}};
   int open_fds = 2;
   char buf[4096];
   while (open_fds > 0) {
@@ -74,9 +102,7 @@ inline ToolRun RunTool(const std::vector<std::string>& args, const std::string& 
       }
     }
   }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.exit_code = WaitTool(pid);
   return r;
 }
 
