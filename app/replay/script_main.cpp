@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "app/render/scene_meshes.h"
+#include "app/render/scope_pose.h"
 #include "app/replay/scripted_surgeon.h"
 #include "app/scenario/scenario_loader.h"
 #include "app/session/dissection_setup.h"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
     vesica::app::ScriptedSurgeonSettings settings;
     settings.log_progress = true;
     settings.max_session_s = max_s;
+    settings.scope_eye_W = vesica::app::ScopePoseOf(scenario.laparoscope).eye_W;
     const auto frames = vesica::app::RunScriptedDissection(session, settings);
     vesica::device::InputRecorder recorder(scenario.name);
     for (size_t i = 0; i < frames.size(); ++i)

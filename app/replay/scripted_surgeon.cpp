@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "physics/collision/surface_ray_caster.h"
 #include "physics/tissue/connective_tissue.h"
 
 namespace vesica::app {
@@ -40,7 +41,8 @@ physics::Vertices VertexNormals(const physics::TriangleMesh& surface, const phys
 }
 }  // namespace
 
-std::vector<device::InputFrame> RunScriptedDissection(DissectionSession& session, const ScriptedSurgeonSettings& st) {
+namespace {
+std::vector<device::InputFrame> RunFundusPlan(DissectionSession& session, const ScriptedSurgeonSettings& st) {
   const physics::DissectionModel& model = session.scene().model();
   const physics::DissectionScene& scene = session.scene();
   const double h = model.settings.time_step_s;
@@ -196,6 +198,263 @@ std::vector<device::InputFrame> RunScriptedDissection(DissectionSession& session
     }
   }
   return frames;
+}
+
+
+// The membrane triangles still attached (both springs alive), with their centroids now.
+struct MembraneTarget {
+  int triangle = -1;
+  Vec3 centroid = Vec3::Zero();
+};
+std::vector<MembraneTarget> AttachedMembrane(const physics::DissectionScene& scene) {
+  const physics::Vertices points = scene.membrane_points();
+  const physics::TissueMembrane& membrane = scene.tissue().membrane;
+  std::vector<MembraneTarget> out;
+  for (Eigen::Index f = 0; f < membrane.triangles.rows(); ++f) {
+    if (!scene.tissue().springs[static_cast<size_t>(membrane.springs(f, 0))].alive ||
+        !scene.tissue().springs[static_cast<size_t>(membrane.springs(f, 1))].alive)
+      continue;
+    const Vec3 c = (points.row(membrane.triangles(f, 0)) + points.row(membrane.triangles(f, 1)) +
+                    points.row(membrane.triangles(f, 2)))
+                       .transpose() /
+                   3.0;
+    out.push_back({static_cast<int>(f), c});
+  }
+  return out;
+}
+
+// The organs as they are now, for line-of-sight tests.
+class OrganSight {
+ public:
+  explicit OrganSight(const physics::DissectionScene& scene) : scene_(scene) {
+    physics::TriangleMesh gallbladder = scene.model().gallbladder_boundary.surface;
+    liver_ = caster_.AddSurface(scene.model().liver->rest_surface);
+    gallbladder_ = caster_.AddSurface(gallbladder);
+  }
+  void Update() {
+    caster_.UpdateVertices(liver_, scene_.liver_positions());
+    caster_.UpdateVertices(gallbladder_, scene_.gallbladder_surface_positions());
+  }
+  /// No organ surface crosses the segment from `from` to within `tolerance_m` of `to`.
+  bool Clear(const Vec3& from, const Vec3& to, double tolerance_m) const {
+    const double length = (to - from).norm();
+    if (length <= tolerance_m) return true;
+    const Vec3 end = from + (to - from) * ((length - tolerance_m) / length);
+    return !caster_.FirstHit(physics::ToolSegment{from, end}).has_value();
+  }
+
+ private:
+  const physics::DissectionScene& scene_;
+  physics::SurfaceRayCaster caster_;
+  int liver_ = -1, gallbladder_ = -1;
+};
+
+std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const ScriptedSurgeonSettings& st) {
+  const physics::DissectionModel& model = session.scene().model();
+  const physics::DissectionScene& scene = session.scene();
+  const double h = model.settings.time_step_s;
+  const double max_step = st.tip_speed_m_per_s * h;
+  const physics::InstrumentMount& grasper = model.instruments[0];
+  const physics::InstrumentMount& hook = model.instruments[1];
+  // Laterally: away from the fossa's rim the springs were grown toward.
+  const Vec3 lateral = -model.toward_liver;
+
+  // The neck: the gallbladder node farthest from the assistant's hold on the fundus. Hartmann's
+  // pouch: a quarter of the way from the neck to the fundus, where the grasper's port sees it.
+  const physics::Vertices& rest = model.gallbladder->rest_mesh.vertices;
+  Vec3 fundus = Vec3::Zero();
+  for (int node : model.retraction.nodes) fundus += rest.row(node).transpose();
+  fundus /= static_cast<double>(model.retraction.nodes.size());
+  Vec3 neck = fundus;
+  for (Eigen::Index v = 0; v < rest.rows(); ++v)
+    if ((rest.row(v).transpose() - fundus).norm() > (neck - fundus).norm()) neck = rest.row(v).transpose();
+  const Vec3 pouch_centre = neck + 0.25 * (fundus - neck);
+  const physics::TriangleMesh& surface = model.gallbladder_boundary.surface;
+  const physics::Vertices rest_normals = VertexNormals(surface, surface.vertices);
+  int pouch = -1;
+  for (int v = 0; v < surface.num_vertices(); ++v) {
+    const Vec3 p = surface.vertices.row(v).transpose();
+    if (rest_normals.row(v).dot((grasper.p_RemoteCentre_W - p).normalized()) < 0.5) continue;
+    if (pouch < 0 || (p - pouch_centre).norm() < (surface.vertices.row(pouch).transpose() - pouch_centre).norm())
+      pouch = v;
+  }
+  if (pouch < 0) throw std::runtime_error("scripted dissection: Hartmann's pouch does not face the grasper's trocar");
+
+  OrganSight sight(scene);
+  enum class Phase { kSettle, kApproach, kRetract, kDissect, kRelease, kDone } phase = Phase::kSettle;
+  // The hook's moves on one target: to 5 mm short of it along its shaft, then with the pedal
+  // down through it to 2 mm past, then back to where it started burning.
+  enum class HookMove { kChoose, kToStart, kBurn, kBack } hook_move = HookMove::kChoose;
+  constexpr double kShort = 0.005, kPast = 0.002, kBurnSpeed = 0.01;
+  Vec3 grasp_tip = grasper.p_RemoteCentre_W + 0.05 * grasper.reference_direction_W;
+  const Vec3 hook_home = hook.p_RemoteCentre_W + 0.05 * hook.reference_direction_W;
+  Vec3 hook_tip = hook_home, burn_from = hook_home, burn_to = hook_home;
+  Vec3 retract_origin = Vec3::Zero();
+  double arrived_at = -1, jaw = 0.5, approach_offset = 0.001, phase_start = 0, still_since = -1;
+  int target_triangle = -1, tries_on_target = 0;
+  std::vector<double> gave_up_at(static_cast<size_t>(scene.tissue().membrane.triangles.rows()), -1.0);
+  std::vector<device::InputFrame> frames;
+  const int total = static_cast<int>(model.tissue.springs.size());
+
+  while (phase != Phase::kDone && session.time_s() < st.max_session_s) {
+    const double t = session.time_s();
+    bool pedal = false;
+    switch (phase) {
+      case Phase::kSettle:
+        if (t >= 1.0) phase = Phase::kApproach;  // the organs settle under the assistant's hold
+        break;
+      case Phase::kApproach: {
+        constexpr double kDwell = 0.1;  // events between stills: a replay's interpolation keeps them
+        if (arrived_at < 0) {
+          const physics::Vertices x = scene.gallbladder_surface_positions();
+          const physics::Vertices n = VertexNormals(surface, x);
+          const Vec3 target = x.row(pouch).transpose() + approach_offset * n.row(pouch).transpose();
+          grasp_tip = MoveToward(grasp_tip, target, max_step);
+          if ((grasp_tip - target).norm() < 1e-9) arrived_at = t;
+        } else if (jaw > 0.0 && t - arrived_at >= kDwell) {
+          jaw = 0.0;
+        } else if (jaw == 0.0 && t - arrived_at >= 2 * kDwell) {
+          if (scene.grasp().state() == physics::GraspStateMachine::State::kHolding) {
+            phase = Phase::kRetract;
+            retract_origin = grasp_tip;
+            phase_start = t;
+          } else {
+            jaw = 0.5;
+            approach_offset -= 0.0005;
+          }
+          arrived_at = -1;
+        }
+        break;
+      }
+      case Phase::kRetract:
+      case Phase::kDissect: {
+        if (scene.grasp().state() != physics::GraspStateMachine::State::kHolding) {  // slipped: take it again
+          phase = Phase::kApproach;
+          jaw = 0.5;
+          approach_offset = 0.001;
+          arrived_at = -1;
+          hook_move = HookMove::kChoose;
+          break;
+        }
+        const double cut = static_cast<double>(total - scene.tissue().num_alive()) / total;
+        grasp_tip = MoveToward(grasp_tip, retract_origin + (st.retraction_m + st.retraction_gain_m * cut) * lateral,
+                               max_step * 0.5);
+        if (phase == Phase::kRetract) {
+          if (t - phase_start > 1.0) phase = Phase::kDissect;
+          break;
+        }
+        if (scene.gallbladder_free()) {
+          phase = Phase::kRelease;
+          phase_start = t;
+          break;
+        }
+        switch (hook_move) {
+          case HookMove::kChoose: {
+            // From the neck up: the attached triangle nearest the neck that the hook reaches
+            // without crossing an organ and the scope sees.
+            sight.Update();
+            target_triangle = -1;
+            double best = std::numeric_limits<double>::infinity();
+            for (const MembraneTarget& m : AttachedMembrane(scene)) {
+              if (gave_up_at[static_cast<size_t>(m.triangle)] >= 0 && t - gave_up_at[static_cast<size_t>(m.triangle)] < 5)
+                continue;
+              const double d = (m.centroid - neck).norm();
+              if (d >= best) continue;
+              // The burn's whole path, to 2 mm past the membrane, clear of the organs from the
+              // hook's port and, where the scope is given, in its sight.
+              const Vec3 along = (m.centroid - hook.p_RemoteCentre_W).normalized();
+              const Vec3 from = m.centroid - kShort * along, to = m.centroid + kPast * along;
+              if (!sight.Clear(hook.p_RemoteCentre_W, to, 0.0)) continue;
+              if (st.scope_eye_W &&
+                  (!sight.Clear(*st.scope_eye_W, to, 0.0) || !sight.Clear(*st.scope_eye_W, from, 0.0)))
+                continue;
+              best = d;
+              target_triangle = m.triangle;
+              burn_from = from;
+              burn_to = to;
+            }
+            if (target_triangle >= 0) {
+              hook_move = HookMove::kToStart;
+              still_since = -1;
+            }
+            break;
+          }
+          case HookMove::kToStart:
+            hook_tip = MoveToward(hook_tip, burn_from, max_step);
+            if ((hook_tip - burn_from).norm() < 1e-9) {
+              if (still_since < 0) still_since = t;
+              if (t - still_since >= 0.05) hook_move = HookMove::kBurn;
+            }
+            break;
+          case HookMove::kBurn: {
+            const physics::TissueMembrane& membrane = scene.tissue().membrane;
+            const bool parted =
+                !scene.tissue().springs[static_cast<size_t>(membrane.springs(target_triangle, 0))].alive ||
+                !scene.tissue().springs[static_cast<size_t>(membrane.springs(target_triangle, 1))].alive;
+            // The organs move as the springs go: a surgeon lifts the pedal the moment the tip
+            // would pass behind one, or once the membrane there has parted.
+            bool hidden = false;
+            if (st.scope_eye_W && scene.steps() % 5 == 0) {
+              sight.Update();
+              hidden = !sight.Clear(*st.scope_eye_W, hook_tip, 0.0) ||
+                       !sight.Clear(*st.scope_eye_W, MoveToward(hook_tip, burn_to, 0.001), 0.0);
+            }
+            if (parted || hidden) {
+              hook_move = HookMove::kBack;
+              tries_on_target = 0;
+              if (hidden && !parted) gave_up_at[static_cast<size_t>(target_triangle)] = t;
+              break;
+            }
+            pedal = true;
+            hook_tip = MoveToward(hook_tip, burn_to, kBurnSpeed * h);
+            if ((hook_tip - burn_to).norm() < 1e-9) {
+              hook_move = HookMove::kBack;
+              if (++tries_on_target >= 2) {
+                gave_up_at[static_cast<size_t>(target_triangle)] = t;
+                tries_on_target = 0;
+              }
+            }
+            break;
+          }
+          case HookMove::kBack:
+            hook_tip = MoveToward(hook_tip, burn_from, max_step);
+            if ((hook_tip - burn_from).norm() < 1e-9) hook_move = HookMove::kChoose;
+            break;
+        }
+        break;
+      }
+      case Phase::kRelease: {
+        // The freed gallbladder stays in the jaws for release_hold_s, then they open.
+        hook_tip = MoveToward(hook_tip, hook_home, max_step);
+        if (t - phase_start > st.release_hold_s) jaw = 0.5;
+        if (t - phase_start > st.release_hold_s + 0.5) {
+          grasp_tip = MoveToward(grasp_tip, grasper.p_RemoteCentre_W + 0.05 * grasper.reference_direction_W, max_step);
+          if (t - phase_start > st.release_hold_s + 2.0) phase = Phase::kDone;
+        }
+        break;
+      }
+      case Phase::kDone:
+        break;
+    }
+    device::InputFrame f;
+    f.time_s = t;
+    f.instruments[0].pose = PoseFor(grasper, grasp_tip, jaw);
+    f.instruments[1].pose = PoseFor(hook, hook_tip, 0.0);
+    f.instruments[1].pedal = pedal;
+    const SessionStepReport r = session.Step(f);
+    frames.push_back(f);
+    if (st.log_progress && session.scene().steps() % static_cast<long>(1.0 / h + 0.5) == 0)
+      std::fprintf(stderr, "t %6.2f s phase %d springs alive %3d grasp %d target %4d f %.2f/%.2f N\n",
+                   session.time_s(), static_cast<int>(phase), scene.tissue().num_alive(),
+                   static_cast<int>(scene.grasp().state()), target_triangle, r.physics.tool_force_N[0].norm(),
+                   r.physics.tool_force_N[1].norm());
+  }
+  return frames;
+}
+}  // namespace
+
+std::vector<device::InputFrame> RunScriptedDissection(DissectionSession& session, const ScriptedSurgeonSettings& st) {
+  return session.scene().model().retraction.empty() ? RunFundusPlan(session, st) : RunPouchPlan(session, st);
 }
 
 }  // namespace vesica::app

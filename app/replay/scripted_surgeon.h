@@ -1,11 +1,18 @@
 #pragma once
 // A scripted two-handed dissection, planned step by step from the live scene (closed loop), the
-// way the committed demo recording data/recordings/dissection.csv was made: the grasper takes the
-// fundus (the gallbladder surface point farthest from its bed that faces the grasper's trocar)
-// and retracts it away from the liver, further as the springs go; the hook burns the membrane
-// spring by spring from the fundus end to the neck with the pedal down; finally the grasper lets
-// go and both instruments withdraw. Tips move at bounded speed; the jaw and pedal switch.
+// way the committed demo recording data/recordings/dissection.csv was made. Two plans:
+//  - the assistant holds the fundus (the surgeon's view, [assistant_retraction]): the left hand's
+//    grasper takes Hartmann's pouch and retracts it laterally, away from the fossa's rim, further
+//    as the springs go; the hook burns the membrane from the neck toward the fundus, triangle by
+//    triangle, taking only what it reaches without crossing an organ and what the scope sees, in
+//    short bursts with the pedal down; once the gallbladder is free it is held a moment in the
+//    jaws, then let go;
+//  - no assistant (the overview layout): the grasper takes the fundus and retracts it away from
+//    the liver; the hook burns spring by spring from the fundus end to the neck.
+// Tips move at bounded speed; the jaw and pedal switch only while the tips are still.
 
+#include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "app/session/dissection_session.h"
@@ -22,6 +29,8 @@ struct ScriptedSurgeonSettings {
   double max_session_s = 240.0;     ///< stop (unfinished) after this long
   double release_hold_s = 0.5;      ///< after the release, before the end
   bool log_progress = false;        ///< one line per simulated second on stderr
+  /// The scope's tip: when set, the hook burns only membrane the camera sees (surgeon's view).
+  std::optional<Eigen::Vector3d> scope_eye_W;
 };
 
 /// Drives `session` until the gallbladder is free and released (or max_session_s), returning the
