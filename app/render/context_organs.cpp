@@ -13,7 +13,10 @@
 #include <vtkTransformPolyDataFilter.h>
 #include <vtkTubeFilter.h>
 
+#include <cmath>
+
 #include "app/render/display_frame.h"
+#include "app/render/material_model.h"
 
 namespace vesica::app {
 
@@ -57,7 +60,7 @@ vtkSmartPointer<vtkAlgorithm> Ellipsoid(const ContextOrgan& organ) {
 
 }  // namespace
 
-std::vector<vtkSmartPointer<vtkActor>> MakeContextOrganActors(const std::vector<ContextOrgan>& organs) {
+std::vector<vtkSmartPointer<vtkActor>> MakeContextOrganActors(const std::vector<ContextOrgan>& organs, bool pbr) {
   std::vector<vtkSmartPointer<vtkActor>> actors;
   for (const ContextOrgan& organ : organs) {
     auto source = organ.shape == ContextOrgan::Shape::kTube ? Tube(organ) : Ellipsoid(organ);
@@ -76,6 +79,14 @@ std::vector<vtkSmartPointer<vtkActor>> MakeContextOrganActors(const std::vector<
     p->SetDiffuse(0.85);
     p->SetSpecular(0.3);  // wet serosa, as the organs
     p->SetSpecularPower(35);
+    if (pbr) {  // PBR wants linear colour: it gamma-encodes its result
+      p->SetInterpolationToPBR();
+      p->SetColor(std::pow(organ.rgb.x(), 2.2), std::pow(organ.rgb.y(), 2.2), std::pow(organ.rgb.z(), 2.2));
+      p->SetAmbient(0.0);
+      p->SetDiffuse(1.0);
+      p->SetMetallic(0.0);
+      p->SetRoughness(kContextRoughness);
+    }
     actor->PickableOff();
     actors.push_back(actor);
   }

@@ -4,9 +4,9 @@
 // ellipsoids (omentum, fat), wet and lit like the organs, never simulated. They make the field
 // recognisable: what lies around the gallbladder is what a surgeon orients by.
 
-#include <vector>
-
 #include <vtkSmartPointer.h>
+
+#include <vector>
 
 #include "app/scenario/scenario.h"
 
@@ -14,7 +14,9 @@ class vtkActor;
 
 namespace vesica::app {
 
-/// One actor per organ, in the display frame (display_frame.h).
-std::vector<vtkSmartPointer<vtkActor>> MakeContextOrganActors(const std::vector<ContextOrgan>& organs);
+/// One actor per organ, in the display frame (display_frame.h); `pbr`: physically based
+/// (colour taken as sRGB, roughness kContextRoughness) instead of Phong.
+std::vector<vtkSmartPointer<vtkActor>> MakeContextOrganActors(const std::vector<ContextOrgan>& organs,
+                                                              bool pbr = false);
 
 }  // namespace vesica::app

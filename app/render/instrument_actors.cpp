@@ -2,6 +2,8 @@
 
 #include <vtkActor.h>
 #include <vtkLineSource.h>
+#include <vtkMatrix4x4.h>
+#include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkSphereSource.h>
@@ -21,10 +23,13 @@ namespace {
 // Laparoscopic instruments: a black insulated shaft (the electrode's insulation, the grasper's
 // too), bare steel only at the working end.
 constexpr double kInsulationGrey = 0.06;
-constexpr double kJawGrey = 0.45;
-constexpr double kJawLength_m = 0.018;
-constexpr double kHookStem_m = 0.012;
-constexpr double kHookFoot_m = 0.006;
+constexpr double kSteelGrey = 0.45;  // Phong: diffuse grey of brushed steel
+// PBR steel: with one light and no environment map a fully metallic surface is black away from
+// its highlight; partly metallic, it keeps a grey body as brushed steel under a scope does.
+constexpr double kSteelBaseColour = 0.55;
+constexpr double kSteelMetallic = 0.6;
+constexpr double kSteelRoughness = 0.35;
+constexpr double kPlasticRoughness = 0.35;
 
 vtkSmartPointer<vtkActor> Tube(vtkLineSource* line, double radius) {
   auto tube = vtkSmartPointer<vtkTubeFilter>::New();
@@ -36,43 +41,118 @@ vtkSmartPointer<vtkActor> Tube(vtkLineSource* line, double radius) {
   mapper->SetInputConnection(tube->GetOutputPort());
   auto actor = vtkSmartPointer<vtkActor>::New();
   actor->SetMapper(mapper);
-  actor->GetProperty()->SetSpecular(0.8);
-  actor->GetProperty()->SetSpecularPower(60);
   return actor;
 }
 
-void Steel(vtkActor* actor, double grey) {
-  auto* p = actor->GetProperty();
-  p->SetColor(grey, grey, grey * 1.03);
-  p->SetAmbient(0.0);
-  p->SetDiffuse(1.0);
-  p->SetSpecular(0.8);
+vtkSmartPointer<vtkActor> Solid(vtkPolyData* poly) {
+  auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  mapper->SetInputData(poly);
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  return actor;
 }
 
-// Lit from inside: full ambient so it reads as light, not as a painted surface.
+// Lit from inside: full ambient so it reads as light, not as a painted surface (Phong in both
+// material models: PBR has no ambient term).
 void Emissive(vtkActor* actor, const double rgb[3]) {
   auto* p = actor->GetProperty();
+  p->SetInterpolationToGouraud();
   p->SetColor(rgb[0], rgb[1], rgb[2]);
   p->SetAmbient(1.0);
   p->SetDiffuse(0.3);
   p->SetSpecular(0.0);
 }
 
+// Places a part modelled in its own frame (x, y, z axes, display frame) at `origin`.
+void Place(vtkActor* actor, const Eigen::Vector3d& origin, const Eigen::Vector3d& x, const Eigen::Vector3d& y,
+           const Eigen::Vector3d& z) {
+  auto m = vtkSmartPointer<vtkMatrix4x4>::New();
+  for (int r = 0; r < 3; ++r) {
+    m->SetElement(r, 0, x(r));
+    m->SetElement(r, 1, y(r));
+    m->SetElement(r, 2, z(r));
+    m->SetElement(r, 3, origin(r));
+  }
+  actor->SetUserMatrix(m);
+}
+
 }  // namespace
 
+GrasperJawShape GrasperJawFor(double shaft_radius_m) {
+  GrasperJawShape s;
+  s.length_m = 0.018;
+  s.width_m = 1.6 * shaft_radius_m;
+  s.thickness_m = 0.6 * shaft_radius_m;
+  s.window_length_m = 0.6 * s.length_m;
+  s.window_width_m = 0.5 * s.width_m;
+  return s;
+}
+
+void InstrumentActors::Steel(vtkActor* actor) const {
+  auto* p = actor->GetProperty();
+  if (pbr_) {
+    p->SetInterpolationToPBR();
+    p->SetColor(kSteelBaseColour, kSteelBaseColour, kSteelBaseColour * 1.02);
+    p->SetMetallic(kSteelMetallic);
+    p->SetRoughness(kSteelRoughness);
+    p->SetAmbient(0.0);
+    p->SetDiffuse(1.0);
+    return;
+  }
+  p->SetInterpolationToGouraud();
+  p->SetColor(kSteelGrey, kSteelGrey, kSteelGrey * 1.03);
+  p->SetAmbient(0.0);
+  p->SetDiffuse(1.0);
+  p->SetSpecular(0.8);
+  p->SetSpecularPower(60);
+}
+
+void InstrumentActors::Insulation(vtkActor* actor) const {
+  auto* p = actor->GetProperty();
+  p->SetColor(kInsulationGrey, kInsulationGrey, kInsulationGrey * 1.03);
+  if (pbr_) {
+    const double linear = std::pow(kInsulationGrey, 2.2);  // PBR lights in linear colour
+    p->SetColor(linear, linear, linear * 1.03);
+    p->SetInterpolationToPBR();
+    p->SetMetallic(0.0);
+    p->SetRoughness(kPlasticRoughness);
+    return;
+  }
+  p->SetAmbient(0.0);
+  p->SetDiffuse(1.0);
+  p->SetSpecular(0.5);  // a glossy plastic sleeve: highlights, no metal tint
+  p->SetSpecularPower(30);
+}
+
 InstrumentActors::InstrumentActors(const InstrumentConfig& config, const Eigen::Vector3d& remote_centre,
-                                   const Eigen::Vector3d& reference_direction)
-    : config_(config), remote_centre_(remote_centre), reference_direction_(reference_direction) {
-  shaft_line_ = vtkSmartPointer<vtkLineSource>::New();
-  tip_a_ = vtkSmartPointer<vtkLineSource>::New();
-  tip_b_ = vtkSmartPointer<vtkLineSource>::New();
+                                   const Eigen::Vector3d& reference_direction, bool pbr)
+    : config_(config),
+      remote_centre_(remote_centre),
+      reference_direction_(reference_direction),
+      pbr_(pbr),
+      jaw_shape_(GrasperJawFor(config.shaft_radius_m)) {
   const double r = config.shaft_radius_m;
+  shaft_line_ = vtkSmartPointer<vtkLineSource>::New();
   shaft_ = Tube(shaft_line_, r);
-  jaw_a_ = Tube(tip_a_, 0.45 * r);
-  jaw_b_ = Tube(tip_b_, 0.45 * r);
-  Steel(shaft_, kInsulationGrey);
-  shaft_->GetProperty()->SetSpecular(0.5);  // a glossy plastic sleeve: highlights, no metal tint
-  shaft_->GetProperty()->SetSpecularPower(30);
+  Insulation(shaft_);
+  if (config.kind == InstrumentKind::kGrasper) {
+    const vtkSmartPointer<vtkPolyData> jaw = MakeGrasperJaw(jaw_shape_);
+    jaw_a_ = Solid(jaw);
+    jaw_b_ = Solid(jaw);
+    Steel(jaw_a_);
+    Steel(jaw_b_);
+    actors_ = {shaft_, jaw_a_, jaw_b_};
+    return;
+  }
+  sleeve_line_ = vtkSmartPointer<vtkLineSource>::New();
+  stem_line_ = vtkSmartPointer<vtkLineSource>::New();
+  foot_line_ = vtkSmartPointer<vtkLineSource>::New();
+  sleeve_ = Tube(sleeve_line_, 0.45 * r);
+  stem_ = Tube(stem_line_, 0.3 * r);
+  foot_ = Tube(foot_line_, 0.3 * r);
+  Insulation(sleeve_);
+  Steel(stem_);
+  Steel(foot_);
   glow_ = vtkSmartPointer<vtkSphereSource>::New();
   glow_->SetRadius(0.7 * r);
   glow_->SetThetaResolution(16);
@@ -83,7 +163,7 @@ InstrumentActors::InstrumentActors(const InstrumentConfig& config, const Eigen::
   glow_actor_->SetMapper(mapper);
   Emissive(glow_actor_, kCauteryGlowRgb);
   glow_actor_->VisibilityOff();
-  actors_ = {shaft_, jaw_a_, jaw_b_, glow_actor_};
+  actors_ = {shaft_, sleeve_, stem_, foot_, glow_actor_};
 }
 
 void InstrumentActors::Update(const InstrumentFrame& frame) {
@@ -92,48 +172,58 @@ void InstrumentActors::Update(const InstrumentFrame& frame) {
   // The physics tip is the working point: the closed jaws' ends, the hook's bend (where it burns).
   // The drawn shaft stops short of it by the jaw or hook stem length.
   const Eigen::Vector3d tip = remote_centre_ + (pose.insertion_m - std::max(frame.past_contact_m, 0.0)) * d;
-  const double head_m = config_.kind == InstrumentKind::kGrasper ? kJawLength_m : kHookStem_m;
+  const bool grasper = config_.kind == InstrumentKind::kGrasper;
+  const double head_m = grasper ? jaw_shape_.length_m : kHookStem_m;
   const Eigen::Vector3d hinge = tip - head_m * d;
   const Eigen::Vector3d outside = remote_centre_ - (config_.shaft_length_m - pose.insertion_m) * d;
   shaft_line_->SetPoint1(ToDisplay(outside).data());
   shaft_line_->SetPoint2(ToDisplay(hinge).data());
+  const double r = config_.shaft_radius_m;
+  casters_.clear();
+  casters_.push_back({ToDisplay(outside), ToDisplay(hinge), r});
   // A frame across the shaft, turned by roll.
   Eigen::Vector3d side = d.cross(Eigen::Vector3d::UnitZ());
   if (side.norm() < 1e-6) side = d.cross(Eigen::Vector3d::UnitX());
   side = Eigen::AngleAxisd(pose.roll_rad, d) * side.normalized();
 
-  if (config_.kind == InstrumentKind::kGrasper) {
-    // Two jaws hinged one jaw length behind the tip, opening symmetrically by the jaw angle.
+  if (grasper) {
+    // Two jaws hinged one jaw length behind the tip, opening symmetrically by the jaw angle in
+    // the plane of d and side; each jaw's grasping face looks at the other's.
     const double half = 0.5 * std::max(pose.jaw_angle_rad, 0.0);
-    const Eigen::Vector3d a = hinge + kJawLength_m * (std::cos(half) * d + std::sin(half) * side);
-    const Eigen::Vector3d b = hinge + kJawLength_m * (std::cos(half) * d - std::sin(half) * side);
-    tip_a_->SetPoint1(ToDisplay(hinge).data());
-    tip_a_->SetPoint2(ToDisplay(a).data());
-    tip_b_->SetPoint1(ToDisplay(hinge).data());
-    tip_b_->SetPoint2(ToDisplay(b).data());
-    for (vtkActor* jaw : {jaw_a_.Get(), jaw_b_.Get()}) {
+    for (const int sign : {+1, -1}) {
+      const Eigen::Vector3d along = std::cos(half) * d + sign * std::sin(half) * side;
+      const Eigen::Vector3d back = -std::sin(half) * d * sign + std::cos(half) * side;  // away from the other jaw
+      const Eigen::Vector3d x_D = ToDisplay(along), y_D = ToDisplay(sign * back);
+      vtkActor* jaw = sign > 0 ? jaw_a_.Get() : jaw_b_.Get();
+      Place(jaw, ToDisplay(hinge), x_D, y_D, x_D.cross(y_D));
       if (frame.slipping)
         Emissive(jaw, kSlipRgb);
       else
-        Steel(jaw, kJawGrey);
+        Steel(jaw);
+      casters_.push_back({ToDisplay(hinge + 0.15 * jaw_shape_.length_m * along),
+                          ToDisplay(hinge + 0.9 * jaw_shape_.length_m * along), 0.5 * jaw_shape_.width_m});
     }
-    glow_actor_->VisibilityOff();
-  } else {
-    // The hook: a stem along the shaft, then a short foot sideways (the L that catches tissue).
-    const Eigen::Vector3d bend = tip;
-    const Eigen::Vector3d foot = bend + kHookFoot_m * side;
-    tip_a_->SetPoint1(ToDisplay(hinge).data());
-    tip_a_->SetPoint2(ToDisplay(bend).data());
-    tip_b_->SetPoint1(ToDisplay(bend).data());
-    tip_b_->SetPoint2(ToDisplay(foot).data());
-    Steel(jaw_a_, kJawGrey);
-    if (frame.cautery_active)
-      Emissive(jaw_b_, kCauteryGlowRgb);
-    else
-      Steel(jaw_b_, kJawGrey);
-    glow_->SetCenter(ToDisplay(bend).data());
-    glow_actor_->SetVisibility(frame.cautery_active);
+    return;
   }
+  // The hook: an insulated stem along the shaft, bare metal for its last millimetres, then a short
+  // foot sideways (the L that catches tissue).
+  const Eigen::Vector3d bend = tip;
+  const Eigen::Vector3d bare = bend - kHookBareStem_m * d;
+  const Eigen::Vector3d foot = bend + kHookFoot_m * side;
+  sleeve_line_->SetPoint1(ToDisplay(hinge).data());
+  sleeve_line_->SetPoint2(ToDisplay(bare).data());
+  stem_line_->SetPoint1(ToDisplay(bare).data());
+  stem_line_->SetPoint2(ToDisplay(bend).data());
+  foot_line_->SetPoint1(ToDisplay(bend).data());
+  foot_line_->SetPoint2(ToDisplay(foot).data());
+  if (frame.cautery_active)
+    Emissive(foot_, kCauteryGlowRgb);
+  else
+    Steel(foot_);
+  glow_->SetCenter(ToDisplay(bend).data());
+  glow_actor_->SetVisibility(frame.cautery_active);
+  casters_.push_back({ToDisplay(hinge), ToDisplay(bend), 0.45 * r});
+  casters_.push_back({ToDisplay(bend), ToDisplay(foot), 0.3 * r});
 }
 
 }  // namespace vesica::app

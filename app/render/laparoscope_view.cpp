@@ -1,15 +1,18 @@
 #include "app/render/laparoscope_view.h"
 
 #include <vtkActor.h>
+#include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkLight.h>
 #include <vtkPNGWriter.h>
+#include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 #include <vtkTexture.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <Eigen/Geometry>
 #include <optional>
 #include <stdexcept>
 
@@ -17,8 +20,10 @@
 #include "app/render/display_frame.h"
 #include "app/render/field_status_overlay.h"
 #include "app/render/instrument_actors.h"
+#include "app/render/instrument_shadow.h"
 #include "app/render/membrane_sheet.h"
 #include "app/render/organ_surface.h"
+#include "app/render/scope_light.h"
 #include "app/render/scope_pose.h"
 #include "app/render/smoke_sprites.h"
 #include "app/render/tissue_texture.h"
@@ -32,8 +37,13 @@ using Ptr = vtkSmartPointer<T>;
 }  // namespace
 
 struct LaparoscopeView::Impl {
+  MaterialModel materials = MaterialModel::kPhysicallyBased;
   Ptr<vtkRenderer> renderer = Ptr<vtkRenderer>::New();
-  vtkSmartPointer<vtkTexture> tissue_texture;
+  vtkSmartPointer<vtkTexture> tissue_texture, tissue_normals;
+  Ptr<vtkLight> light = Ptr<vtkLight>::New();
+  Ptr<vtkCallbackCommand> before_render = Ptr<vtkCallbackCommand>::New();
+  std::vector<vtkActor*> shadow_receivers;  // the organs
+  bool shadows = true;
   std::optional<OrganSurface> liver, gallbladder, wall;
   MembraneSheet membrane;
   SmokeSprites smoke;
@@ -45,10 +55,35 @@ struct LaparoscopeView::Impl {
   // picture left the translucent pass drawing with another context's buffers (vesica-replay
   // --png-dir segfaulted in Mesa's swrast on its 11th picture).
   Ptr<vtkRenderWindow> png_window;
+
+  // Before each render: the light beside the lens where the camera is now (the trainer's keys
+  // move the camera), and the instruments' shadows in the camera's view coordinates.
+  void PlaceLightAndShadows() {
+    vtkCamera* camera = renderer->GetActiveCamera();
+    Eigen::Vector3d eye, focal, up;
+    camera->GetPosition(eye.data());
+    camera->GetFocalPoint(focal.data());
+    camera->GetViewUp(up.data());
+    const Eigen::Vector3d forward = (focal - eye).normalized();
+    up = (up - up.dot(forward) * forward).normalized();
+    // The display frame is right-handed: the image's right is forward x up.
+    const Eigen::Vector3d light_D = ScopeLightPosition(eye, forward.cross(up), up);
+    light->SetPosition(light_D.data());
+    light->SetFocalPoint(focal.data());
+    std::vector<ShadowCaster> casters;
+    for (const auto& instrument : instruments)
+      casters.insert(casters.end(), instrument.shadow_casters().begin(), instrument.shadow_casters().end());
+    for (vtkActor* organ : shadow_receivers) SetInstrumentShadows(organ, casters, light_D, camera, shadows);
+  }
+  static void BeforeRender(vtkObject*, unsigned long, void* impl, void*) {
+    static_cast<Impl*>(impl)->PlaceLightAndShadows();
+  }
 };
 
-LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& meshes)
+LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& meshes, MaterialModel materials)
     : impl_(std::make_unique<Impl>()) {
+  impl_->materials = materials;
+  const bool pbr = materials == MaterialModel::kPhysicallyBased;
   auto& r = *impl_->renderer;
   r.SetBackground(0.10, 0.03, 0.03);  // the cavity beyond the light's reach
   // Serosa detail: one generated texture, a 3 cm period on the liver, 2 cm on the gallbladder.
@@ -64,7 +99,22 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
     impl_->wall.emplace(meshes.abdominal_wall, kWallRgb, 0.12, scenario.abdominal_wall.opacity);
     r.AddActor(impl_->wall->actor());
   }
-  for (const auto& organ : MakeContextOrganActors(scenario.context_organs)) r.AddActor(organ);
+  if (pbr) {
+    impl_->tissue_normals = MakeTissueNormalTexture(256, 7);  // the relief under the colour texture's vessels
+    impl_->liver->UsePbr(kLiverRoughness, impl_->tissue_normals, kTissueNormalScale);
+    impl_->gallbladder->UsePbr(kGallbladderRoughness, impl_->tissue_normals, kTissueNormalScale);
+    if (impl_->wall) impl_->wall->UsePbr(kWallRoughness, nullptr, 0);
+    // The membrane stays Phong (translucent, per-cell colour): its light share is PBR's light's.
+    auto* membrane = impl_->membrane.actor()->GetProperty();
+    membrane->SetDiffuse(membrane->GetDiffuse() / kPbrLightGain);
+    membrane->SetSpecular(membrane->GetSpecular() / kPbrLightGain);
+  }
+  impl_->shadow_receivers = {impl_->liver->actor(), impl_->gallbladder->actor()};
+  for (const auto& organ : MakeContextOrganActors(scenario.context_organs, pbr)) {
+    r.AddActor(organ);
+    impl_->shadow_receivers.push_back(organ);
+  }
+  for (vtkActor* organ : impl_->shadow_receivers) ReceiveInstrumentShadows(organ);
   r.AddActor(impl_->membrane.actor());
   r.AddActor(impl_->smoke.actor());
   // Exact translucency (membrane over organs, overlapping smoke puffs); needs multisampling off
@@ -77,7 +127,7 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
   for (const auto& config : scenario.instruments) {
     const Eigen::Vector3d centre = scenario.trocar(config.trocar).position_m;
     const Eigen::Vector3d reference = (scope.look_at_m - centre).normalized();
-    InstrumentActors ia(config, centre, reference);
+    InstrumentActors ia(config, centre, reference, pbr);
     InstrumentFrame f;
     f.pose = physics::AimAt(centre, scope.look_at_m, config.initial_insertion_m, reference);
     ia.Update(f);
@@ -100,24 +150,33 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
   camera->SetViewUp(ToDisplay(pose.up_W).data());
   camera->SetViewAngle(scope.view_angle_deg);
   r.ResetCameraClippingRange();
-  // The scope's light leaves its tip: near tissue bright, far tissue dark. VTK's attenuation is
-  // 1 / (c0 + c1 r + c2 r^2); this one is 1 at the working distance, 2.5x at the lens, 0.36x at
-  // twice the distance (an inverse square softened near the tip, as a scope's diffuser does).
+  // The scope's light leaves its tip beside the lens (placed before each render, scope_light.h):
+  // near tissue bright, far tissue dark. VTK's attenuation is 1 / (c0 + c1 r + c2 r^2); this one
+  // is 1 at the working distance, 2.5x at the lens, 0.36x at twice the distance (an inverse
+  // square softened near the tip, as a scope's diffuser does).
   r.RemoveAllLights();
   const double working_distance_m = (scope.look_at_m - pose.eye_W).norm();
-  auto light = Ptr<vtkLight>::New();
-  light->SetLightTypeToHeadlight();
-  light->SetPositional(1);
-  light->SetConeAngle(180);  // no cone: the whole field is lit
-  light->SetAttenuationValues(0.4, 0.0, 0.6 / (working_distance_m * working_distance_m));
-  light->SetIntensity(1.15);
-  r.AddLight(light);
+  auto& light = *impl_->light;
+  light.SetLightTypeToSceneLight();
+  light.SetPositional(1);
+  light.SetConeAngle(180);  // no cone: the whole field is lit
+  light.SetAttenuationValues(0.4, 0.0, 0.6 / (working_distance_m * working_distance_m));
+  light.SetIntensity(pbr ? 1.15 * kPbrLightGain : 1.15);
+  r.AddLight(impl_->light);
   r.SetTwoSidedLighting(1);
+  impl_->before_render->SetCallback(&Impl::BeforeRender);
+  impl_->before_render->SetClientData(impl_.get());
+  r.AddObserver(vtkCommand::StartEvent, impl_->before_render);
+  impl_->PlaceLightAndShadows();
 }
 
-LaparoscopeView::~LaparoscopeView() = default;
+LaparoscopeView::~LaparoscopeView() { impl_->renderer->RemoveObserver(impl_->before_render); }
 
 vtkRenderer* LaparoscopeView::renderer() { return impl_->renderer; }
+
+MaterialModel LaparoscopeView::materials() const { return impl_->materials; }
+
+void LaparoscopeView::ShowInstrumentShadows(bool on) { impl_->shadows = on; }
 
 const FieldStatusOverlay& LaparoscopeView::status() const { return *impl_->status; }
 

@@ -1,14 +1,16 @@
 #pragma once
-// The laparoscope's view of the scene in VTK: organs shaded with mottled vertex colours and a
-// wet specular look under the scope's headlight, the abdominal wall hidden or translucent, and
-// the instruments as shafts through their trocars. Update() shows one physics snapshot: the
-// deformed organs, burn darkening, the connective-tissue membrane, smoke and the instruments'
-// jaws. VTK stays inside the .cpp (pimpl).
+// The laparoscope's view of the scene in VTK: organs in physically based materials (or Phong,
+// material_model.h) with mottled colours, relief and a wet look under the scope's light, which
+// leaves the scope beside the lens (scope_light.h) so that the instruments cast shadows on the
+// organs; the abdominal wall hidden or translucent, and the instruments (fenestrated grasper,
+// L-hook) through their trocars. Update() shows one physics snapshot: the deformed organs, burns,
+// the connective-tissue membrane, smoke and the instruments' jaws. VTK stays inside the .cpp.
 
 #include <filesystem>
 #include <memory>
 #include <vector>
 
+#include "app/render/material_model.h"
 #include "app/render/render_colours.h"
 #include "app/render/render_frame.h"
 #include "app/render/scene_meshes.h"
@@ -26,12 +28,17 @@ class LaparoscopeView {
  public:
   /// The gallbladder is drawn from physics::ExtractBoundary(meshes.gallbladder).surface, the
   /// numbering RenderFrame::gallbladder_vertices uses.
-  LaparoscopeView(const Scenario& scenario, const SceneMeshes& meshes);
+  LaparoscopeView(const Scenario& scenario, const SceneMeshes& meshes,
+                  MaterialModel materials = MaterialModelFromEnvironment());
   ~LaparoscopeView();
   LaparoscopeView(const LaparoscopeView&) = delete;
   LaparoscopeView& operator=(const LaparoscopeView&) = delete;
 
   vtkRenderer* renderer();
+  MaterialModel materials() const;
+
+  /// Instrument shadows on the organs (on by default).
+  void ShowInstrumentShadows(bool on);
   /// The grasp, pedal and arm labels in the field (their text, for tests).
   const FieldStatusOverlay& status() const;
 

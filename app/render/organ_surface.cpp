@@ -9,10 +9,12 @@
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
+#include <vtkShaderProperty.h>
 #include <vtkTexture.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "app/render/burn_colours.h"
@@ -34,7 +36,7 @@ double Mottle(const Eigen::Vector3d& p) {
 
 OrganSurface::OrganSurface(const physics::TriangleMesh& rest, const double rgb[3], double mottle_amplitude,
                            double opacity, vtkTexture* texture, double texture_tile_m)
-    : rest_(rest), rgb_{rgb[0], rgb[1], rgb[2]} {
+    : rest_(rest), rgb_{rgb[0], rgb[1], rgb[2]}, texture_(texture) {
   shade_.resize(rest_.num_vertices());
   for (int v = 0; v < rest_.num_vertices(); ++v)
     shade_[v] = 1.0 + mottle_amplitude * Mottle(rest_.vertices.row(v).transpose());
@@ -84,7 +86,7 @@ OrganSurface::OrganSurface(const physics::TriangleMesh& rest, const double rgb[3
     poly_->GetPointData()->SetTCoords(tcoords);
   }
   WriteGeometry(rest_.vertices);
-  burn_.assign(rest_.num_triangles(), 1.0f);  // forces the first SetBurn to write every colour
+  burn_.assign(rest_.num_vertices(), 1.0f);  // forces the first SetBurn to write every colour
   SetBurn({});
 
   auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
@@ -137,25 +139,69 @@ void OrganSurface::SetVertices(const physics::Vertices& vertices) {
 }
 
 void OrganSurface::SetBurn(const std::vector<float>& burn) {
+  next_burn_.assign(rest_.num_vertices(), 0.0f);
+  if (!burn.empty())
+    for (int f = 0; f < rest_.num_triangles(); ++f) {
+      const float b = Unit(burn[static_cast<std::size_t>(f)]);
+      for (int k = 0; k < 3; ++k) {
+        float& v = next_burn_[static_cast<std::size_t>(rest_.triangles(f, k))];
+        v = std::max(v, b);
+      }
+    }
+  if (next_burn_ == burn_) return;
   auto* colours = vtkUnsignedCharArray::SafeDownCast(poly_->GetPointData()->GetScalars());
   auto* rgb = colours->GetPointer(0);
-  bool changed = false;
-  for (int f = 0; f < rest_.num_triangles(); ++f) {
-    const float b = burn.empty() ? 0.0f : Unit(burn[f]);
-    if (b == burn_[f]) continue;  // only re-colour triangles whose burn changed
-    burn_[f] = b;
-    changed = true;
+  for (int f = 0; f < rest_.num_triangles(); ++f)
     for (int k = 0; k < 3; ++k) {
-      const auto c = BurnedColour(rgb_, shade_[rest_.triangles(f, k)], b);
+      const auto v = static_cast<std::size_t>(rest_.triangles(f, k));
+      if (next_burn_[v] == burn_[v]) continue;  // only re-colour corners whose burn changed
+      const auto c = BurnedColour(rgb_, shade_[v], next_burn_[v]);
       const std::size_t corner = 3 * (3 * static_cast<std::size_t>(f) + k);
       rgb[corner] = c[0];
       rgb[corner + 1] = c[1];
       rgb[corner + 2] = c[2];
     }
+  burn_.swap(next_burn_);
+  colours->Modified();
+  poly_->Modified();
+}
+
+void OrganSurface::UsePbr(double roughness, vtkTexture* normal_map, double normal_scale) {
+  auto* prop = actor_->GetProperty();
+  prop->SetInterpolationToPBR();
+  prop->SetMetallic(0.0);
+  prop->SetRoughness(roughness);
+  prop->SetAmbient(0.0);
+  prop->SetDiffuse(1.0);
+  // The vertex colours are sRGB (what BurnedColour and the tests speak); PBR lights in linear
+  // colour and gamma-encodes its result, so the colour is decoded in the shader, at full precision.
+  actor_->GetShaderProperty()->AddFragmentShaderReplacement(
+      "//VTK::Color::Impl", true, "//VTK::Color::Impl\n  diffuseColor = pow(diffuseColor, vec3(2.2));\n", false);
+  if (texture_ != nullptr) {
+    actor_->SetTexture(nullptr);
+    texture_->UseSRGBColorSpaceOn();
+    prop->SetBaseColorTexture(texture_);
   }
-  if (changed) {
-    colours->Modified();
-    poly_->Modified();
+  if (normal_map != nullptr && poly_->GetPointData()->GetTCoords() != nullptr) {
+    // Tangents of the box mapping: u runs along the rest projection plane's first axis.
+    auto tangents = vtkSmartPointer<vtkFloatArray>::New();
+    tangents->SetName("Tangents");
+    tangents->SetNumberOfComponents(3);
+    tangents->SetNumberOfTuples(3 * static_cast<vtkIdType>(rest_.num_triangles()));
+    float* t = tangents->GetPointer(0);
+    for (int f = 0; f < rest_.num_triangles(); ++f) {
+      const Eigen::Vector3d a = rest_.vertices.row(rest_.triangles(f, 0)).transpose();
+      const Eigen::Vector3d b = rest_.vertices.row(rest_.triangles(f, 1)).transpose();
+      const Eigen::Vector3d c = rest_.vertices.row(rest_.triangles(f, 2)).transpose();
+      int axis = 0;
+      (b - a).cross(c - a).cwiseAbs().maxCoeff(&axis);
+      const Eigen::Vector3d u_D = ToDisplay(Eigen::Vector3d::Unit((axis + 1) % 3));
+      for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < 3; ++i) t[9 * static_cast<std::size_t>(f) + 3 * k + i] = static_cast<float>(u_D(i));
+    }
+    poly_->GetPointData()->SetTangents(tangents);
+    prop->SetNormalTexture(normal_map);
+    prop->SetNormalScale(normal_scale);
   }
 }
 
