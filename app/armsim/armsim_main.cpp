@@ -67,10 +67,12 @@ int main(int argc, char** argv) {
   app.add_option("--hand-y-mm", hand_y_mm, "hand target, trocar frame y, mm");
   app.add_option("--depth-mm", depth_mm, "park insertion depth and hand target depth, mm")
       ->check(CLI::Range(20.0, 250.0));
-  CLI::Option* hand_option = app.add_option("--hand", hand,
-                 "what the hand does: 'hold' (at --hand-x-mm/--hand-y-mm/--depth-mm), 'figure8' (about that point), "
-                 "or 'recording FILE' (one instrument of a recorded session, e.g. data/recordings/dissection.csv)")
-      ->expected(1, 2);
+  CLI::Option* hand_option =
+      app.add_option(
+             "--hand", hand,
+             "what the hand does: 'hold' (at --hand-x-mm/--hand-y-mm/--depth-mm), 'figure8' (about that point), "
+             "or 'recording FILE' (one instrument of a recorded session, e.g. data/recordings/dissection.csv)")
+          ->expected(1, 2);
   app.add_option("--side", side, "recording: which instrument the hand plays, left or right (default: left for node 1, "
                                  "right otherwise)")
       ->check(CLI::IsMember({"left", "right"}));
@@ -197,9 +199,10 @@ int main(int argc, char** argv) {
       script = emu::HandScript(let_go);
       hand_text = "not holding it (it must be homed)";
     }
-    spdlog::info("vesica-armsim: powered up moved while off: yaw {:+.4f} rad, pitch {:+.4f} rad, insertion {:+.4f} m "
-                 "from where it was calibrated",
-                 moved[0] - q0[0], moved[1] - q0[1], moved[3] - q0[3]);
+    spdlog::info(
+        "vesica-armsim: powered up moved while off: yaw {:+.4f} rad, pitch {:+.4f} rad, insertion {:+.4f} m "
+        "from where it was calibrated",
+        moved[0] - q0[0], moved[1] - q0[1], moved[3] - q0[3]);
   }
   arm.plant().SetHandScript(script);
   vesica::app::FixtureControl fixture;

@@ -23,7 +23,8 @@ CalibrationResult ArmCalibrator::Run() {
       throw CalibrationAbort(AbortReason::kRefused,
                              "node " + std::to_string(link_.node_id()) +
                                  " is not homed since power-up (its positions are not known): run `vesica-calibrate "
-                                 "home " + std::to_string(link_.node_id()) + "` first, or a whole calibration");
+                                 "home " +
+                                 std::to_string(link_.node_id()) + "` first, or a whole calibration");
     declare_home_ = (plan_.steps & kStepRange) && (plan_.joints == 0b111 || !not_homed);
     // The node's own torque constant and ratio: the torques measured are in its units.
     for (int j = 0; j < 3; ++j) {

@@ -284,9 +284,8 @@ void Node<Hw>::handle_control(const Control& m, std::uint64_t now_us) {
   switch (m.command) {
     case ControlCommand::Enable:
       // Explicit enable: only operational, fault-free, negotiated, E-stop loop closed, no calibration.
-      if (nmt_state_ == NodeState::Operational && faults_.latched() == FaultCode::None &&
-          negotiated_minor_ != 0xFF && !last_sample_.estop_input && cal_status_ != CalibrationStatus::Running &&
-          !session_open_ && homed_) {
+      if (nmt_state_ == NodeState::Operational && faults_.latched() == FaultCode::None && negotiated_minor_ != 0xFF &&
+          !last_sample_.estop_input && cal_status_ != CalibrationStatus::Running && !session_open_ && homed_) {
         enabled_ = true;
         command_ = JointArray{};
         command_sequence_.reset();
@@ -345,7 +344,8 @@ void Node<Hw>::handle_parameter(const ParameterRequest& m) {
       if (enabled_ || cal_status_ == CalibrationStatus::Running) { abort = AbortCode::WrongState; break; }
       sync_fault_parameters();
       if (!save_parameters()) abort = AbortCode::StorageFailed;
-      else keep_home_after_save();
+      else
+        keep_home_after_save();
       // A save is how a calibration session keeps its results; a failed one keeps the old.
       if (session_open_) end_session(abort == AbortCode::None ? CalibrationStatus::Done : CalibrationStatus::Failed);
       break;
