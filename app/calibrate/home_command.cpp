@@ -37,8 +37,9 @@ CommandOutcome Home(ToolSession& s, int arm, const HomeRequest& request) {
                                 {{"arm", arm}, {"protocol_negotiated_minor", minor}});
   if (a.info.active_slot < 0)
     return ToolSession::Failure(kExitFailed,
-                                a.text + " has no stored calibration to home to (its index positions and range are "
-                                         "not known); run `vesica-calibrate calibrate " +
+                                a.text +
+                                    " has no stored calibration to home to (its index positions and range are "
+                                    "not known); run `vesica-calibrate calibrate " +
                                     std::to_string(arm) + "` (nothing moved)",
                                 {{"arm", arm}});
   MotionNotice notice;
@@ -48,9 +49,10 @@ CommandOutcome Home(ToolSession& s, int arm, const HomeRequest& request) {
   std::string joints;
   for (int j = 0; j < 3; ++j)
     if ((request.joints >> j) & 1u) joints += std::string(joints.empty() ? "" : ", ") + JointName(j);
-  notice.motions.push_back("homing: each joint seeks its lower hard stop slowly, then creeps to its encoder's "
-                           "reference index, then returns to the centre (" +
-                           joints + ")");
+  notice.motions.push_back(
+      "homing: each joint seeks its lower hard stop slowly, then creeps to its encoder's "
+      "reference index, then returns to the centre (" +
+      joints + ")");
   if (!s.ui().ConfirmMotion(notice))
     return ToolSession::Failure(kExitAborted, "arm " + std::to_string(arm) + ": not confirmed; nothing moved",
                                 {{"arm", arm}});
@@ -69,8 +71,8 @@ CommandOutcome Home(ToolSession& s, int arm, const HomeRequest& request) {
                            {"offset_after", r.offset_after[j]},
                            {"correction", r.correction[j]},
                            {"unit", rotary ? "rad" : "m"}});
-    lines += std::string("  ") + JointName(j) + std::string(10 - std::string(JointName(j)).size(), ' ') +
-             "moved " + Signed(r.correction[j], rotary ? "%+.5f rad" : "%+.5f m") + " while off (offset " +
+    lines += std::string("  ") + JointName(j) + std::string(10 - std::string(JointName(j)).size(), ' ') + "moved " +
+             Signed(r.correction[j], rotary ? "%+.5f rad" : "%+.5f m") + " while off (offset " +
              Signed(r.offset_before[j], "%+.5f") + " -> " + Signed(r.offset_after[j], "%+.5f") + ")\n";
   }
   if (!r.homed) {
@@ -84,10 +86,9 @@ CommandOutcome Home(ToolSession& s, int arm, const HomeRequest& request) {
     return o;
   }
   CommandOutcome o;
-  o.json = {{"command", "home"},         {"ok", true},
-            {"arm", arm},                {"homed", true},
-            {"was_homed", r.was_homed},  {"bus_time_s", r.bus_time_s},
-            {"joints", joints_json}};
+  o.json = {
+      {"command", "home"},          {"ok", true},           {"arm", arm}, {"homed", true}, {"was_homed", r.was_homed},
+      {"bus_time_s", r.bus_time_s}, {"joints", joints_json}};
   o.text = a.text + ": homed, " + Signed(r.bus_time_s, "%.1f") + " s of bus time\n" + lines;
   return o;
 }
