@@ -6,13 +6,12 @@
 // draw is Mesa's llvmpipe (software); wall time is the figure (llvmpipe draws with threads).
 
 #include <benchmark/benchmark.h>
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
 
 #include <filesystem>
 #include <memory>
 #include <vector>
-
-#include <vtkNew.h>
-#include <vtkRenderWindow.h>
 
 #include "app/render/laparoscope_view.h"
 #include "app/render/scene_meshes.h"
@@ -38,8 +37,8 @@ struct RenderFixture {
 
   RenderFixture() : scenario(LoadScenario(DefaultScenarioPath())), meshes(LoadSceneMeshes(scenario)) {
     auto model = BuildDissectionModelFor(scenario, meshes);
-    vesica::device::InputRecording rec = vesica::device::ReadInputRecording(
-        std::filesystem::path(VESICA_SOURCE_DIR) / "data/recordings/dissection.csv");
+    vesica::device::InputRecording rec =
+        vesica::device::ReadInputRecording(std::filesystem::path(VESICA_SOURCE_DIR) / "data/recordings/dissection.csv");
     std::erase_if(rec.frames, [](const vesica::device::InputFrame& f) { return f.time_s > 14.0; });
     vesica::device::ReplayInput input(rec);
     DissectionSession session(model, DefaultCauteryParams());
@@ -83,5 +82,14 @@ void BM_RenderFrame(benchmark::State& state) {
   state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_RenderFrame)->Args({1280, 720})->Args({640, 360})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The same frame without the instruments' shadows: what the shadow's fragment-shader test costs.
+// (VESICA_MATERIALS=phong runs both with the Phong fallback instead of PBR.)
+void BM_RenderFrameWithoutShadows(benchmark::State& state) {
+  Fixture().view->ShowInstrumentShadows(false);
+  BM_RenderFrame(state);
+  Fixture().view->ShowInstrumentShadows(true);
+}
+BENCHMARK(BM_RenderFrameWithoutShadows)->Args({1280, 720})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
