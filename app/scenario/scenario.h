@@ -97,7 +97,13 @@ struct ContextOrgan {
   Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();     ///< ellipsoid
   Eigen::Vector3d semi_axes_m = Eigen::Vector3d::Zero();  ///< ellipsoid, along x, y, z
   Eigen::Vector3d rgb = Eigen::Vector3d::Constant(0.8);   ///< colour 0..1
+  /// The gallbladder rests on it (a static obstacle in the physics). Default: true for an
+  /// ellipsoid and a tube of radius >= kSolidTubeRadius_m (bowel), false for thinner tubes.
+  bool solid = false;
 };
+
+/// Tubes at least this thick are solid unless the scenario says otherwise (duodenum, colon).
+inline constexpr double kSolidTubeRadius_m = 0.008;
 
 struct Scenario {
   std::filesystem::path source;  ///< the file it was loaded from

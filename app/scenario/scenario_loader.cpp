@@ -91,6 +91,13 @@ class TableReader {
     Fail(n, key, std::string("must be a string, got ") + TypeName(*n));
   }
 
+  bool Boolean(std::string_view key, bool fallback) {
+    const toml::node* n = Node(key);
+    if (!n) return fallback;
+    if (n->is_boolean()) return *n->value<bool>();
+    Fail(n, key, std::string("must be true or false, got ") + TypeName(*n));
+  }
+
   /// An integer in [lo, hi], checked before it is narrowed (4294967297 is not 1).
   int IntegerIn(std::string_view key, int lo, int hi, std::optional<int> fallback = std::nullopt) {
     const toml::node* n = Node(key);
@@ -353,6 +360,9 @@ Scenario ParseScenario(std::string_view text, const fs::path& source_name, const
       organ.rgb = t.Vector3("rgb");
       if (!(organ.rgb.minCoeff() >= 0 && organ.rgb.maxCoeff() <= 1))
         t.Fail(t.table().get("rgb"), "rgb", "each component must be in [0, 1]");
+      // Bowel, stomach and omentum hold the gallbladder up; ducts, vessels and instruments do not.
+      const bool bulky = organ.shape == ContextOrgan::Shape::kEllipsoid || organ.radius_m >= kSolidTubeRadius_m;
+      organ.solid = t.Boolean("solid", bulky);
       t.RejectUnknownKeys();
       s.context_organs.push_back(std::move(organ));
     }

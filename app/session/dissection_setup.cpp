@@ -65,6 +65,13 @@ physics::DissectionModelInputs MakeDissectionInputs(const Scenario& scenario, co
   in.settings.attach_offset_m = scenario.connective_tissue.attach_offset_m;
   in.settings.gravity_m_per_s2 = GravityInPatientFrame(scenario.patient);  // zero without [patient]
   if (scenario.assistant_retraction) in.settings.assistant_retraction = ToPhysics(*scenario.assistant_retraction);
+  for (const ContextOrgan& organ : scenario.context_organs) {  // the solid ones hold the gallbladder up
+    if (!organ.solid) continue;
+    if (organ.shape == ContextOrgan::Shape::kTube)
+      in.obstacles.tubes.push_back({organ.name, organ.points_m, organ.radius_m});
+    else
+      in.obstacles.ellipsoids.push_back({organ.name, organ.centre_m, organ.semi_axes_m});
+  }
   in.instruments[0] = MountOf(scenario, *grasper, physics::InstrumentRole::kGrasper);
   in.instruments[1] = MountOf(scenario, *hook, physics::InstrumentRole::kCauteryHook);
   return in;

@@ -23,6 +23,8 @@
 //   BM_HapticForceUpdate: one 1 ms device tick: HapticForceRenderer::Update with a new physics
 //     frame every 5th tick (200 Hz physics), Force every tick.
 //   BM_RenderContactForce: RenderContactForce on a unilateral (hook) frame.
+//   BM_FreedGallbladderResting/<contact 0|1>: the freed box falling freely (0) or lying on an
+//     ellipsoid (1), issue 30's static obstacles; counters: rows, pressed nodes, two stage times.
 // Models (BEM pre-process: seconds) and warmed-up scenes are built once per size, outside the
 // timed loops; the liver's Green's functions are cached in $TMPDIR across runs.
 
@@ -227,6 +229,41 @@ BENCHMARK(BM_DissectionStep)
                    {kSolverPcg, kSolverCholmod, kSolverRotatedFactorGs},
                    {0, 1}})
     ->Unit(benchmark::kMicrosecond);
+
+// Issue 30: the freed gallbladder lying on an organ. The 980-node box (PCG) with every spring cut
+// under 9.81 m/s^2 along -y, over a 40 x 20 x 40 mm ellipsoid whose top is 5 mm below it (contact 1:
+// warmed 1 s, it lies on it, its pressed nodes each a contact row and two friction rows), or with
+// no obstacle and no liver contact (contact 0: falling freely, the step as it was before static
+// obstacles existed: no contact rows).
+void BM_FreedGallbladderResting(benchmark::State& state) {
+  const bool contact = state.range(0) != 0;
+  DissectionModelInputs in = SceneInputs(kGallbladderSmallNodes, kSolverPcg);
+  in.settings.gravity_m_per_s2 = {0, -9.81, 0};
+  in.settings.gallbladder_rests_on_liver = contact;
+  if (contact)
+    in.obstacles.ellipsoids.push_back(
+        {"bench organ",
+         {testing::kShiftX + 0.006, testing::kGallbladderBottomY - 0.025, testing::kShiftZ},
+         {0.04, 0.02, 0.04}});
+  DissectionScene scene(BuildDissectionModel(in));
+  for (size_t k = 0; k < scene.tissue().springs.size(); ++k) scene.CutSpring(static_cast<int>(k));
+  const std::array<InstrumentPose, 2> away{};
+  for (int k = 0; k < 200; ++k) scene.Step(away);
+  double rows = 0, contacts = 0, collision = 0, constraints = 0;
+  for (auto _ : state) {
+    const DissectionStepReport r = scene.Step(away);
+    rows += r.constraint_rows;
+    contacts += r.obstacle_contacts;
+    collision += r.times.collision_us;
+    constraints += r.times.constraints_us;
+  }
+  auto mean = [](double v) { return benchmark::Counter(v, benchmark::Counter::kAvgIterations); };
+  state.counters["rows"] = mean(rows);
+  state.counters["pressed"] = mean(contacts);
+  state.counters["collision_us"] = mean(collision);
+  state.counters["constraints_us"] = mean(constraints);
+}
+BENCHMARK(BM_FreedGallbladderResting)->Arg(0)->Arg(1)->Iterations(400)->Unit(benchmark::kMicrosecond);
 
 // Two consecutive hook frames of the 980-node scene (pressing the gallbladder).
 std::array<HapticContactFrame, 2> HookFrames() {

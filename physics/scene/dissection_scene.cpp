@@ -162,6 +162,7 @@ std::vector<DissectionScene::Row> DissectionScene::ObstacleRows(const Vertices& 
   const DissectionSettings& s = model_->settings;
   std::vector<Row> rows;
   if (model_->obstacles.empty() && model_->liver_proximity.empty()) return rows;
+  if (s.static_contact_only_when_free && !gallbladder_free()) return rows;
   const Eigen::VectorXi& boundary_nodes = model_->gallbladder_boundary.surface_to_volume;
   SurfaceProximityGrid::Frame liver_frame;
   if (!model_->liver_proximity.empty()) liver_frame = model_->liver_proximity.MakeFrame(liver_free);

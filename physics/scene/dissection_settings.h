@@ -56,7 +56,11 @@ struct DissectionSettings {
   // weight is tiny against the liver's stiffness). Each node nearer than obstacle_margin_m is a
   // one-sided row in the constraint solve, like an instrument's contact.
   bool gallbladder_rests_on_liver = true;  ///< the gallbladder's nodes may not enter the liver
-  double obstacle_margin_m = 0.001;        ///< a node this near a surface gets a contact row, > 0
+  /// The contact acts only once the last spring is cut: until then the springs hold the
+  /// gallbladder in its bed (where the anatomy's meshes may touch), and the committed recordings
+  /// were made without it, so a dissection replays as before up to the moment it frees.
+  bool static_contact_only_when_free = true;
+  double obstacle_margin_m = 0.001;  ///< a node this near a surface gets a contact row, > 0
   /// A node deeper than this inside an obstacle or the liver is left alone (pushing it out of a
   /// thin organ's far side would be wrong), > max_correction_per_step_m.
   double obstacle_max_depth_m = 0.005;
