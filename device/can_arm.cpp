@@ -41,6 +41,15 @@ CanArm::CanArm(fp::Transport& transport, const CanArmConfig& config)
       link_(config.loss_timeout.count()) {}
 
 CanArm::~CanArm() {
+  std::lock_guard lock(mu_);  // Tick() may not collect the run meanwhile
+  StopHoming();
+}
+
+void CanArm::StopHoming() {
+  {
+    std::lock_guard lock(homing_link_mu_);
+    if (homing_link_) homing_link_->RequestAbort();
+  }
   if (homing_thread_.joinable()) homing_thread_.join();
 }
 
@@ -87,8 +96,8 @@ DeviceStatus CanArm::Open() {
 }
 
 void CanArm::Close() {
-  if (homing_thread_.joinable()) homing_thread_.join();  // it stops on its own: the node's session ends
   std::lock_guard lock(mu_);
+  StopHoming();  // the node ends its session: the arm is left disabled
   if (phase_ == Phase::kClosed) return;
   Send(fp::Control{config_.node_id, control_counter_++, fp::ControlCommand::Disable}, transport_.now());
   phase_ = Phase::kClosed;
@@ -308,6 +317,10 @@ void CanArm::StartHoming() {
       };
     }
     calibration::CalibrationLink link(transport_, wait, lc);
+    {
+      std::lock_guard lock(homing_link_mu_);
+      homing_link_ = &link;
+    }
     calibration::HomingPlan plan = config_.homing;
     const auto user_progress = plan.progress;
     plan.progress = [this, user_progress](const std::string& step, double fraction) {
@@ -315,6 +328,10 @@ void CanArm::StartHoming() {
       if (user_progress) user_progress(step, fraction);
     };
     homing_result_ = calibration::HomeArm(link, plan);
+    {
+      std::lock_guard lock(homing_link_mu_);
+      homing_link_ = nullptr;
+    }
     homing_running_ = false;
   });
 }

@@ -136,6 +136,9 @@ class CanArm final : public HapticDevice {
   void StartHoming();
   /// Collects a finished homing run; true while one still owns the transport.
   bool HomingBusy();
+  /// Asks a homing run to stop (the node ends its session: arm disabled, not homed) and waits for
+  /// it; call with mu_ held (the run never takes it).
+  void StopHoming();
   DeviceStatus StatusLocked() const;
 
   fp::Transport& transport_;
@@ -192,6 +195,8 @@ class CanArm final : public HapticDevice {
   std::thread homing_thread_;
   std::atomic<bool> homing_running_{false};
   std::atomic<double> homing_fraction_{0.0};
+  std::mutex homing_link_mu_;                              ///< guards homing_link_
+  calibration::CalibrationLink* homing_link_ = nullptr;  ///< the run's link while it lasts (Close aborts it)
   calibration::HomingResult homing_result_;  ///< written by the homing thread, read after join
 };
 

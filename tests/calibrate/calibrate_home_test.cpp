@@ -173,3 +173,41 @@ TEST(BridgeHoming, HomesAnArmMovedWhileOffAtConnectionThenEnablesIt) {
 
 }  // namespace
 }  // namespace vesica::app::calibrate
+
+namespace vesica::app::calibrate {
+namespace {
+
+// The trainer closing while the bridge homes an arm (Close from another thread): the run is
+// stopped, the node ends its session, the arm is left disabled and not homed.
+TEST(BridgeHoming, ClosedMidHomeLeavesTheArmNotHomed) {
+  MovedArm arm;
+  ASSERT_TRUE(arm.Start({"--moved-while-off", "0.7"}));
+  std::string error;
+  auto host = fp::UdpTransport::open(
+      {.local_port = static_cast<std::uint16_t>(arm.base + 1), .remote_port = static_cast<std::uint16_t>(arm.base)},
+      error);
+  ASSERT_TRUE(host) << error;
+  device::CanArmConfig config;
+  config.node_watchdog_timeout = 50ms;
+  config.loss_timeout = 500ms;
+  device::CanArm can_arm(*host, config);
+  ASSERT_EQ(can_arm.Open(), device::DeviceStatus::kConnecting);
+  auto next = std::chrono::steady_clock::now();
+  const auto until = next + 20s;
+  while (std::chrono::steady_clock::now() < until && !(can_arm.homing() && can_arm.homing_fraction() > 0.0)) {
+    can_arm.Tick();
+    next += 1ms;
+    std::this_thread::sleep_until(next);
+  }
+  ASSERT_TRUE(can_arm.homing()) << can_arm.last_error();
+  can_arm.Close();
+  EXPECT_FALSE(can_arm.homing());
+  host.reset();  // the tool takes the bridge's port
+  const std::string dir = testing::FreshDir("home-closed");
+  const ToolRun step = arm.Tool(dir, {"--yes", "--json", "calibrate", "1", "--step", "friction"});
+  EXPECT_EQ(step.exit_code, kExitFailed) << step.err;
+  EXPECT_NE(step.out.find("is not homed since power-up"), std::string::npos) << step.out;
+}
+
+}  // namespace
+}  // namespace vesica::app::calibrate
