@@ -195,7 +195,7 @@ class CanArm final : public HapticDevice {
   std::thread homing_thread_;
   std::atomic<bool> homing_running_{false};
   std::atomic<double> homing_fraction_{0.0};
-  std::mutex homing_link_mu_;                              ///< guards homing_link_
+  std::mutex homing_link_mu_;                            ///< guards homing_link_
   calibration::CalibrationLink* homing_link_ = nullptr;  ///< the run's link while it lasts (Close aborts it)
   calibration::HomingResult homing_result_;  ///< written by the homing thread, read after join
 };
