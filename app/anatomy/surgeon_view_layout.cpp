@@ -57,7 +57,7 @@ AnatomyOptions SurgeonViewAnatomyOptions() {
   // left of the midline, the laparoscope at the umbilicus (the assistant's anterior-axillary
   // port holds the fundus; it carries no simulated instrument).
   o.ports.grasper_xz_m = {-0.08, 0.03};
-  o.ports.cautery_xz_m = {0.01, 0.045};
+  o.ports.cautery_xz_m = {0.01, 0.037};
   o.ports.laparoscope_xz_m = {0.0, -0.10};
   return o;
 }
