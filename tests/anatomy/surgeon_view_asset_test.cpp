@@ -166,6 +166,44 @@ TEST_F(SurgeonViewAssetTest, TheVisceralSurfaceAroundTheGallbladderFacesTheUmbil
   EXPECT_GT(facing / area, 0.6);
 }
 
+TEST_F(SurgeonViewAssetTest, TheInferiorEdgeIsThinAndFinelyMeshed) {
+  // Along the edge's middle (5 cm either side of the fundus, clear of the round ligament's
+  // notch), 8 mm in from the crest the liver is under 2 cm thick (a wedge's sharp edge, not a
+  // slab's rounded end), and the mesh's edges near the crest are short (graded), so the crest is
+  // not drawn as a saw.
+  int samples = 0;
+  for (double s = -0.05; s <= 0.05; s += 0.01) {
+    const Eigen::Vector3d crest = RetractedLiverEdgePoint(shape, s);
+    const Eigen::Vector3d inside = crest + 0.008 * shape.frame.Across() - 0.002 * shape.frame.Out();
+    if (!IsInsideClosedSurface(liver, inside)) continue;  // the fossa (gallbladder) at this s
+    const auto back = FirstRayHit(liver, inside, -shape.frame.Out());
+    ASSERT_TRUE(back.has_value()) << s;
+    std::printf("s = %+.0f cm: %.1f mm thick 8 mm in from the crest\n", 1e2 * s, 1e3 * (*back + 0.002));
+    EXPECT_LT(*back + 0.002, 0.02) << "thickness 8 mm in from the crest at s = " << s;
+    ++samples;
+  }
+  EXPECT_GE(samples, 5);
+  double near_sum = 0, far_sum = 0;
+  int near_n = 0, far_n = 0;
+  for (int f = 0; f < liver.num_triangles(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d a = liver.vertices.row(liver.triangles(f, k));
+      const Eigen::Vector3d b = liver.vertices.row(liver.triangles(f, (k + 1) % 3));
+      const double d = RetractedLiverCrestDistance(shape, 0.5 * (a + b));
+      if (d < 0.005) {
+        near_sum += (b - a).norm();
+        ++near_n;
+      } else if (d > 0.04) {
+        far_sum += (b - a).norm();
+        ++far_n;
+      }
+    }
+  std::printf("mesh edges: %.1f mm within 5 mm of the crest (%d), %.1f mm beyond 4 cm (%d)\n", 1e3 * near_sum / near_n,
+              near_n, 1e3 * far_sum / far_n, far_n);
+  EXPECT_LT(near_sum / near_n, 0.005);
+  EXPECT_LT(near_sum / near_n, 0.5 * far_sum / far_n);
+}
+
 TEST(SurgeonViewReproducibilityTest, GeneratorReproducesTheCommittedFiles) {
   const auto dir = fs::temp_directory_path() /
                    ("vesica_surgeon_view_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
