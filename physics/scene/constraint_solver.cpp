@@ -49,6 +49,9 @@ double RowError(ConstraintKind kind, double lambda, double residual, double boun
   return lambda > 0.0 ? std::abs(residual) : std::max(0.0, -residual);
 }
 
+// Problems larger than this read A by columns in the sweep (see SolveConstraints).
+constexpr Eigen::Index kContiguousRows = 32;
+
 // mu lambda_normal for a friction row (0 for other rows).
 double FrictionBound(const ConstraintProblem& p, const Eigen::VectorXd& lambda, Eigen::Index i) {
   if (p.kinds[static_cast<size_t>(i)] != ConstraintKind::kFriction) return 0.0;
@@ -67,7 +70,12 @@ ConstraintSolution SolveConstraints(const ConstraintProblem& p, const Constraint
   for (int sweep = 1; sweep <= settings.max_iterations; ++sweep) {
     for (Eigen::Index i = 0; i < m; ++i) {
       // Row residual without row i's own contribution, then the row's exact solution, projected.
-      const double others = a.row(i).dot(out.lambda) - a(i, i) * out.lambda[i] + p.gap[i];
+      // A is symmetric: a large problem reads column i (contiguous) instead of row i (one cache
+      // line per entry: 1 ms a sweep at m = 445, the freed gallbladder lying flat on an organ).
+      // Small ones (the tools' rows) keep the row's summation order, so their results, and the
+      // committed recordings' replays, stay bit for bit as they were.
+      const double row_dot = m > kContiguousRows ? a.col(i).dot(out.lambda) : a.row(i).dot(out.lambda);
+      const double others = row_dot - a(i, i) * out.lambda[i] + p.gap[i];
       double li = -others / a(i, i);
       const ConstraintKind kind = p.kinds[static_cast<size_t>(i)];
       if (kind == ConstraintKind::kUnilateral) li = std::max(0.0, li);
@@ -78,6 +86,8 @@ ConstraintSolution SolveConstraints(const ConstraintProblem& p, const Constraint
       out.lambda[i] = li;
     }
     out.iterations = sweep;
+    // A large problem checks convergence every 8th sweep and at the last (the check costs a sweep).
+    if (m > kContiguousRows && sweep % 8 != 0 && sweep != settings.max_iterations) continue;
     const Eigen::VectorXd residual = a * out.lambda + p.gap;
     out.max_error_m = 0.0;
     for (Eigen::Index i = 0; i < m; ++i)

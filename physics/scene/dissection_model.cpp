@@ -33,6 +33,7 @@ void ValidateDissectionSettings(const DissectionSettings& s) {
   Require(std::isfinite(s.obstacle_compliance_m_per_N) && s.obstacle_compliance_m_per_N > 0,
           "obstacle_compliance_m_per_N", "must be > 0");
   Require(std::isfinite(s.obstacle_friction) && s.obstacle_friction >= 0, "obstacle_friction", "must be >= 0");
+  Require(s.obstacle_max_sweeps >= 1, "obstacle_max_sweeps", "must be >= 1");
 }
 
 Eigen::Vector3d DirectionTowardBed(const TriangleMesh& liver, const TetrahedralMesh& gallbladder) {

@@ -374,15 +374,29 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     problem.kinds.push_back(ra.kind);
     problem.normal_row.push_back(ra.kind == ConstraintKind::kFriction ? static_cast<int>(a) + ra.normal_offset : -1);
     problem.friction_coefficient.push_back(ra.friction);
+    // An obstacle's contact and friction rows share their node: consecutive rows b on the same
+    // points as the one before reuse its block (the same numbers, computed once).
+    const Row* block_of = nullptr;
+    Eigen::Matrix3d block;
     for (Eigen::Index b = a; b < m; ++b) {
       const Row& rb = rows[static_cast<size_t>(b)];
-      const double w = ra.direction.dot(BlockCompliance(ra, rb) * rb.direction);
+      if (block_of == nullptr || block_of->liver != rb.liver || block_of->nodes != rb.nodes ||
+          block_of->weights != rb.weights) {
+        block = BlockCompliance(ra, rb);
+        block_of = &rb;
+      }
+      const double w = ra.direction.dot(block * rb.direction);
       problem.delassus(a, b) = w;
       problem.delassus(b, a) = w;
     }
   }
   report.constraint_rows = static_cast<int>(m);
-  report.constraints = SolveConstraints(problem);
+  // With the freed gallbladder's resting rows (hundreds where a flat face lies on an organ) a
+  // sweep costs m^2: a capped number of sweeps keeps the step bounded; what one step leaves
+  // unresolved of a resting contact shows as a gap the next step's rows close.
+  ConstraintSolverSettings solver;
+  if (!obstacle_rows.empty()) solver.max_iterations = s.obstacle_max_sweeps;
+  report.constraints = SolveConstraints(problem, solver);
   const Eigen::VectorXd& lambda = report.constraints.lambda;
   lap(report.times.constraints_us);
 

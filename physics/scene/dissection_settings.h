@@ -60,7 +60,7 @@ struct DissectionSettings {
   /// gallbladder in its bed (where the anatomy's meshes may touch), and the committed recordings
   /// were made without it, so a dissection replays as before up to the moment it frees.
   bool static_contact_only_when_free = true;
-  double obstacle_margin_m = 0.001;  ///< a node this near a surface gets a contact row, > 0
+  double obstacle_margin_m = 0.0005;  ///< a node this near a surface gets a contact row, > 0
   /// A node deeper than this inside an obstacle or the liver is left alone (pushing it out of a
   /// thin organ's far side would be wrong), > max_correction_per_step_m.
   double obstacle_max_depth_m = 0.005;
@@ -70,6 +70,9 @@ struct DissectionSettings {
   /// serosa; 0.4 holds it on slopes up to 22 degrees): two tangential rows per pressed node in the
   /// constraint solve; 0: no friction rows.
   double obstacle_friction = 0.4;
+  /// Projected Gauss-Seidel sweeps of a step's constraint solve when it has obstacle rows, >= 1
+  /// (without them the solver's default, 200).
+  int obstacle_max_sweeps = 30;
 };
 
 }  // namespace vesica::physics
