@@ -67,14 +67,14 @@ ConstraintSolution SolveConstraints(const ConstraintProblem& p, const Constraint
   if (m == 0) return out;
   Eigen::MatrixXd a = p.delassus;
   a.diagonal() += p.soft_compliance;
+  const bool large = settings.fast_large_problems && m > kContiguousRows;
   for (int sweep = 1; sweep <= settings.max_iterations; ++sweep) {
     for (Eigen::Index i = 0; i < m; ++i) {
       // Row residual without row i's own contribution, then the row's exact solution, projected.
       // A is symmetric: a large problem reads column i (contiguous) instead of row i (one cache
       // line per entry: 1 ms a sweep at m = 445, the freed gallbladder lying flat on an organ).
-      // Small ones (the tools' rows) keep the row's summation order, so their results, and the
-      // committed recordings' replays, stay bit for bit as they were.
-      const double row_dot = m > kContiguousRows ? a.col(i).dot(out.lambda) : a.row(i).dot(out.lambda);
+      // Asked for only after the freeing (ConstraintSolverSettings::fast_large_problems).
+      const double row_dot = large ? a.col(i).dot(out.lambda) : a.row(i).dot(out.lambda);
       const double others = row_dot - a(i, i) * out.lambda[i] + p.gap[i];
       double li = -others / a(i, i);
       const ConstraintKind kind = p.kinds[static_cast<size_t>(i)];
@@ -87,7 +87,7 @@ ConstraintSolution SolveConstraints(const ConstraintProblem& p, const Constraint
     }
     out.iterations = sweep;
     // A large problem checks convergence every 8th sweep and at the last (the check costs a sweep).
-    if (m > kContiguousRows && sweep % 8 != 0 && sweep != settings.max_iterations) continue;
+    if (large && sweep % 8 != 0 && sweep != settings.max_iterations) continue;
     const Eigen::VectorXd residual = a * out.lambda + p.gap;
     out.max_error_m = 0.0;
     for (Eigen::Index i = 0; i < m; ++i)

@@ -30,6 +30,10 @@ struct ConstraintProblem {
 struct ConstraintSolverSettings {
   int max_iterations = 200;    ///< projected Gauss-Seidel sweeps
   double tolerance_m = 1e-12;  ///< stop when no row's complementarity error exceeds this
+  /// Problems over 32 rows read the symmetric W by columns (contiguous) and check convergence
+  /// every 8th sweep: much faster for hundreds of rows, but other rounding than the row order,
+  /// so it is asked for only where results need not match older runs bit for bit.
+  bool fast_large_problems = false;
 };
 
 struct ConstraintSolution {

@@ -395,7 +395,10 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
   // sweep costs m^2: a capped number of sweeps keeps the step bounded; what one step leaves
   // unresolved of a resting contact shows as a gap the next step's rows close.
   ConstraintSolverSettings solver;
-  if (!obstacle_rows.empty()) solver.max_iterations = s.obstacle_max_sweeps;
+  if (!obstacle_rows.empty()) {
+    solver.max_iterations = s.obstacle_max_sweeps;
+    solver.fast_large_problems = true;  // only after the freeing: earlier steps keep their bits
+  }
   report.constraints = SolveConstraints(problem, solver);
   const Eigen::VectorXd& lambda = report.constraints.lambda;
   lap(report.times.constraints_us);
