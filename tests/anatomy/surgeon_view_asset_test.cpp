@@ -118,10 +118,8 @@ TEST_F(SurgeonViewAssetTest, AmericanFourPortsOnTheWallWithClearPathsToTheirWork
   EXPECT_LT(grasper.x(), -0.05) << "right subcostal, the left hand's grasper";
   EXPECT_NEAR(hook.x(), 0.0, 0.02) << "epigastric, the right hand's hook";
   EXPECT_GT(hook.z(), scope.z() + 0.12);
-  // The hook reaches the gallbladder's side of the connective tissue's slot (all but the deepest,
-  // behind the fossa's rim: the fossa is shallow, the gallbladder sunk deeper than its rim only
-  // toward the infundibulum, 84 % reached; surgeon_view_burn_test burns it from this port), and
-  // the grasper Hartmann's pouch, without crossing the liver.
+  // The hook reaches the gallbladder's side of the connective tissue's slot (all but the deepest
+  // few, behind the fossa's rim), and the grasper Hartmann's pouch, without crossing the liver.
   int slot = 0, reached = 0;
   for (int i = 0; i < gallbladder_surface.num_vertices(); ++i) {
     const Eigen::Vector3d p = gallbladder_surface.vertices.row(i);
@@ -136,7 +134,7 @@ TEST_F(SurgeonViewAssetTest, AmericanFourPortsOnTheWallWithClearPathsToTheirWork
   }
   std::printf("the hook reaches %d of the slot's %d gallbladder vertices clear of the liver\n", reached, slot);
   EXPECT_GT(slot, 10);
-  EXPECT_GE(reached, 0.8 * slot);
+  EXPECT_GE(reached, 0.9 * slot);
   const Eigen::Vector3d pouch = centreline.points_m[3];
   const auto hit = FirstRayHit(liver, grasper, (pouch - grasper).normalized());
   if (hit) {
@@ -164,44 +162,6 @@ TEST_F(SurgeonViewAssetTest, TheVisceralSurfaceAroundTheGallbladderFacesTheUmbil
   std::printf("visceral surface within 6 cm of the gallbladder: %.0f %% of %.0f cm^2 faces the scope within 60 deg\n",
               100 * facing / area, 1e4 * area);
   EXPECT_GT(facing / area, 0.6);
-}
-
-TEST_F(SurgeonViewAssetTest, TheInferiorEdgeIsThinAndFinelyMeshed) {
-  // Along the edge's middle (5 cm either side of the fundus, clear of the round ligament's
-  // notch), 8 mm in from the crest the liver is under 2 cm thick (a wedge's sharp edge, not a
-  // slab's rounded end), and the mesh's edges near the crest are short (graded), so the crest is
-  // not drawn as a saw.
-  int samples = 0;
-  for (double s = -0.05; s <= 0.05; s += 0.01) {
-    const Eigen::Vector3d crest = RetractedLiverEdgePoint(shape, s);
-    const Eigen::Vector3d inside = crest + 0.008 * shape.frame.Across() - 0.002 * shape.frame.Out();
-    if (!IsInsideClosedSurface(liver, inside)) continue;  // the fossa (gallbladder) at this s
-    const auto back = FirstRayHit(liver, inside, -shape.frame.Out());
-    ASSERT_TRUE(back.has_value()) << s;
-    std::printf("s = %+.0f cm: %.1f mm thick 8 mm in from the crest\n", 1e2 * s, 1e3 * (*back + 0.002));
-    EXPECT_LT(*back + 0.002, 0.02) << "thickness 8 mm in from the crest at s = " << s;
-    ++samples;
-  }
-  EXPECT_GE(samples, 5);
-  double near_sum = 0, far_sum = 0;
-  int near_n = 0, far_n = 0;
-  for (int f = 0; f < liver.num_triangles(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d a = liver.vertices.row(liver.triangles(f, k));
-      const Eigen::Vector3d b = liver.vertices.row(liver.triangles(f, (k + 1) % 3));
-      const double d = RetractedLiverCrestDistance(shape, 0.5 * (a + b));
-      if (d < 0.005) {
-        near_sum += (b - a).norm();
-        ++near_n;
-      } else if (d > 0.04) {
-        far_sum += (b - a).norm();
-        ++far_n;
-      }
-    }
-  std::printf("mesh edges: %.1f mm within 5 mm of the crest (%d), %.1f mm beyond 4 cm (%d)\n", 1e3 * near_sum / near_n,
-              near_n, 1e3 * far_sum / far_n, far_n);
-  EXPECT_LT(near_sum / near_n, 0.005);
-  EXPECT_LT(near_sum / near_n, 0.5 * far_sum / far_n);
 }
 
 TEST(SurgeonViewReproducibilityTest, GeneratorReproducesTheCommittedFiles) {
