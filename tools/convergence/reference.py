@@ -419,7 +419,7 @@ def main():
     args = parser.parse_args()
     for tool in ("gmsh", "ccx"):
         if shutil.which(tool) is None:
-            sys.exit(f"{tool} not found: apt-get install calculix-ccx gmsh (scripts/deps.txt)")
+            sys.exit(f"{tool} not found: apt-get install calculix-ccx gmsh (tools/convergence/deps.txt)")
     cases = [liver_case, gallbladder_case]
     if args.case != "all":
         cases = [liver_case if args.case == "liver-hook" else gallbladder_case]
