@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the laparoscope pictures in docs/images from the release build: the default
-# scenario's first frame (default-view.png) and the committed dissection at 16 s, the hook at the
+# scenario's first frame (default-view.png) and the committed dissection at 9 s, the hook at the
 # membrane (mid-dissection.png). Needs an X server: without a display it starts its own Xvfb.
 #   ./scripts/make_doc_images.sh            (after ./scripts/setup.sh release)
 set -euo pipefail
@@ -13,7 +13,7 @@ x=()
 "${x[@]}" "$bin/trainer/vesica-trainer" --headless --width 1280 --height 720 --screenshot "$out/default-view.png"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-"${x[@]}" "$bin/replay/vesica-replay" "$here/data/recordings/dissection.csv" --png-dir "$tmp" --png-every-s 16 \
+"${x[@]}" "$bin/replay/vesica-replay" "$here/data/recordings/dissection.csv" --png-dir "$tmp" --png-every-s 9 \
   --width 1280 --height 720 --progress none >/dev/null
 cp "$tmp/frame_00001.png" "$out/mid-dissection.png"
 echo "wrote $out/default-view.png and $out/mid-dissection.png"

@@ -119,24 +119,28 @@ void ExpectOrgansInPicture(const fs::path& png, const Scenario& s, const SceneMe
       << "organ colours outside the organs' silhouettes in " << png;
 }
 
+// The overview layout (the scope looking down on the liver bed): the image checks were made for
+// its open view of both organs.
+fs::path OverviewScenarioPath() { return fs::path(VESICA_SOURCE_DIR) / "data/scenarios/cholecystectomy-overview.toml"; }
+
 class LaparoscopeImageTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    scenario_ = LoadScenario(DefaultScenarioPath());
+    scenario_ = LoadScenario(OverviewScenarioPath());
     meshes_ = LoadSceneMeshes(scenario_);
     dir_ = fs::temp_directory_path() / ("vesica_app_test_" + std::to_string(::getpid()));
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  // The default scenario with only the simulated organs in view: its static context (other
+  // The overview scenario with only the simulated organs in view: its static context (other
   // organs, the peritoneum) would be organ-coloured pixels outside the liver's and the
   // gallbladder's silhouettes. Written to the test's folder with absolute mesh paths.
   fs::path OrgansOnlyScenario() {
-    std::ifstream in(DefaultScenarioPath());
+    std::ifstream in(OverviewScenarioPath());
     std::string text((std::istreambuf_iterator<char>(in)), {});
     text = text.substr(0, text.find("[[context_organs]]"));
-    const std::string anatomy = "\"" + (DefaultScenarioPath().parent_path() / "../anatomy/").lexically_normal().string();
+    const std::string anatomy = "\"" + (OverviewScenarioPath().parent_path() / "../anatomy/").lexically_normal().string();
     for (std::size_t at; (at = text.find("\"../anatomy/")) != std::string::npos;) text.replace(at, 12, anatomy);
     const std::string wall = "opacity = 1.0";
     if (const auto at = text.find(wall); at != std::string::npos) text.replace(at, wall.size(), "opacity = 0.0");

@@ -3,7 +3,9 @@
 // burn darkening where the hook burned and smoke while the pedal is down, none before; the
 // membrane fading with its opacity; the grasper's jaws open and closed; the slip highlight; the
 // gallbladder drawn where the deformed physics puts it. The committed recording's first seconds
-// replay into the view. Set VESICA_RENDER_TEST_OUT to a folder to keep the pictures.
+// replay into the view. The renderer's mechanics are checked on the overview layout
+// (cholecystectomy-overview.toml: the scope looks down on the liver bed). Set
+// VESICA_RENDER_TEST_OUT to a folder to keep the pictures.
 
 #include <gtest/gtest.h>
 
@@ -142,7 +144,7 @@ bool SegmentClear(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const phys
 class SessionRenderTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    scenario_ = new Scenario(LoadScenario(DefaultScenarioPath()));
+    scenario_ = new Scenario(LoadScenario(fs::path(VESICA_SOURCE_DIR) / "data/scenarios/cholecystectomy-overview.toml"));
     // Only the simulated organs in view: the pixel classes below are theirs (the static context's
     // fat is as bright a yellow as the hook's glow). tests/field checks the context.
     scenario_->context_organs.clear();
@@ -408,7 +410,7 @@ std::array<Eigen::Vector3d, 2> JawPoints(const physics::InstrumentMount& m, phys
 
 TEST_F(SessionRenderTest, ReplayedRecordingRendersJawsClosingAndTheGallbladderWhereThePhysicsMovedIt) {
   device::InputRecording rec =
-      device::ReadInputRecording(fs::path(VESICA_SOURCE_DIR) / "data/recordings/dissection.csv");
+      device::ReadInputRecording(fs::path(VESICA_SOURCE_DIR) / "data/recordings/dissection-overview.csv");
   std::erase_if(rec.frames, [](const device::InputFrame& f) { return f.time_s > 2.0; });  // grasp and retract
   device::ReplayInput input(rec);
   DissectionSession session(model_, DefaultCauteryParams());
@@ -577,7 +579,7 @@ TEST_F(SessionRenderTest, BurnsWhitenThenDarkenAndSmokeClearsAfterThePedal) {
 // The retracted frame of the recording at three membrane opacities.
 TEST_F(SessionRenderTest, MembraneFadesWithItsOpacity) {
   device::InputRecording rec =
-      device::ReadInputRecording(fs::path(VESICA_SOURCE_DIR) / "data/recordings/dissection.csv");
+      device::ReadInputRecording(fs::path(VESICA_SOURCE_DIR) / "data/recordings/dissection-overview.csv");
   std::erase_if(rec.frames, [](const device::InputFrame& f) { return f.time_s > 2.0; });
   device::ReplayInput input(rec);
   DissectionSession session(model_, DefaultCauteryParams());

@@ -4,6 +4,7 @@
 // surgeon's-view tests.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 

@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 const fs::path kDir = fs::path(VESICA_SOURCE_DIR) / "data/scenarios";
 
 std::string SurgeonViewText() {
-  std::ifstream in(kDir / "cholecystectomy-surgeon-view.toml");
+  std::ifstream in(kDir / "cholecystectomy.toml");
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
@@ -69,8 +69,14 @@ TEST(PatientAndRetractionKeys, TheSurgeonViewTiltsThePatientAndHoldsTheFundus) {
   EXPECT_TRUE(in.settings.assistant_retraction.grasp_point_m.isApprox(s.assistant_retraction->grasp_point_m));
 }
 
-TEST(PatientAndRetractionKeys, TheDefaultScenarioHasNeither) {
-  const Scenario s = LoadScenario(DefaultScenarioPath());
+// The default is the surgeon's view: the patient tilted and the fundus held. The overview layout,
+// whose scope looks down on the bed, has neither: no gravity, no assistant.
+TEST(PatientAndRetractionKeys, TheDefaultTiltsAndHoldsTheOverviewHasNeither) {
+  const Scenario by_default = LoadScenario(DefaultScenarioPath());
+  EXPECT_TRUE(by_default.patient.given);
+  EXPECT_TRUE(by_default.assistant_retraction.has_value());
+  const Scenario s =
+      LoadScenario(kDir / "cholecystectomy-overview.toml");
   EXPECT_FALSE(s.patient.given);
   EXPECT_TRUE(GravityInPatientFrame(s.patient).isZero());
   EXPECT_FALSE(s.assistant_retraction.has_value());
@@ -99,7 +105,7 @@ TEST(PatientAndRetractionKeys, BadValuesAreRefusedByName) {
   EXPECT_NE(missing.find("assistant_retraction.grasp_point_m"), std::string::npos) << missing;
   // A grasp point away from the gallbladder holds nothing: the physics says so.
   const Scenario far =
-      Parse(With(text, "grasp_point_m = [-0.0651, 0.0633, 0.0482]", "grasp_point_m = [0.1, 0.0, 0.0]"));
+      Parse(With(text, "grasp_point_m = [-0.0693, 0.0700, 0.0715]", "grasp_point_m = [0.1, 0.0, 0.0]"));
   const physics::DissectionModelInputs in = MakeDissectionInputs(far, LoadSceneMeshes(far));
   try {
     physics::MakeAssistantRetraction(in.gallbladder_mesh, in.settings.assistant_retraction);

@@ -91,7 +91,9 @@ double RayToSegment(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double l
 class RenderMaterialsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    scenario_ = LoadScenario(DefaultScenarioPath());
+    // The overview layout: the scope looks down on the liver, so the hook's shadow and a burn fall
+    // on open liver surface the test's rays can follow.
+    scenario_ = LoadScenario(std::filesystem::path(VESICA_SOURCE_DIR) / "data/scenarios/cholecystectomy-overview.toml");
     scenario_.context_organs.clear();  // only the simulated organs: the test's rays know them
     scenario_.abdominal_wall.opacity = 0;
     meshes_ = LoadSceneMeshes(scenario_);

@@ -1,5 +1,5 @@
 // Burning in the surgeon's view (issue 30: "aimed at the membrane, the hook disappears under the
-// gallbladder, so the resident burns blind"). In cholecystectomy-surgeon-view.toml the grasper
+// gallbladder, so the resident burns blind"). In cholecystectomy.toml the grasper
 // takes the gallbladder and pulls it laterally, then the hook burns the connective tissue in the
 // slot beside it, target after target, with the pedal down. Every 50 ms while the pedal is down
 // the hook's tip must be in the scope's sight (no liver or gallbladder between), springs must be
@@ -33,7 +33,7 @@ using anatomy::FirstRayHit;
 
 TEST(SurgeonViewBurn, TheHookBurnsTheMembraneInSightOfTheScope) {
   const Scenario scenario =
-      LoadScenario(fs::path(VESICA_SOURCE_DIR) / "data/scenarios/cholecystectomy-surgeon-view.toml");
+      LoadScenario(fs::path(VESICA_SOURCE_DIR) / "data/scenarios/cholecystectomy.toml");
   const SceneMeshes meshes = LoadSceneMeshes(scenario);
   const auto model = BuildDissectionModelFor(scenario, meshes);
   DissectionSession session(model, DefaultCauteryParams());

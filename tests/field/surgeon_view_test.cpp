@@ -1,4 +1,4 @@
-// The surgeon's view (issue 30): data/scenarios/cholecystectomy-surgeon-view.toml seen from its
+// The surgeon's view (issue 30): data/scenarios/cholecystectomy.toml seen from its
 // umbilical laparoscope, measured with rays cast through the pixels of the independent pinhole
 // model (scope_rays.h, screen_projection.h) at the organs' triangles: no VTK, no Bullet.
 //   - The first frame shows the hepatocystic triangle and the liver's inferior edge, and the
@@ -34,7 +34,7 @@ using anatomy::FirstRayHit;
 
 constexpr int kWidth = 320, kHeight = 180;  // 16:9 as the trainer's picture, coarse enough to cast
 
-fs::path ScenarioPath() { return fs::path(VESICA_SOURCE_DIR) / "data/scenarios/cholecystectomy-surgeon-view.toml"; }
+fs::path ScenarioPath() { return fs::path(VESICA_SOURCE_DIR) / "data/scenarios/cholecystectomy.toml"; }
 
 const ContextOrgan& Organ(const Scenario& s, const std::string& name) {
   for (const ContextOrgan& o : s.context_organs)

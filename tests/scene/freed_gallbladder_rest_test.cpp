@@ -69,7 +69,7 @@ double OrganDepth(const ContextOrgan& o, const Eigen::Vector3d& p) {
 Released Release(bool with_contact, double seconds) {
   physics::ScopedDenseLinearAlgebraThreads one_thread{1};  // as the session runs it
   const Scenario scenario =
-      LoadScenario(fs::path(VESICA_SOURCE_DIR) / "data/scenarios/cholecystectomy-surgeon-view.toml");
+      LoadScenario(fs::path(VESICA_SOURCE_DIR) / "data/scenarios/cholecystectomy.toml");
   const SceneMeshes meshes = LoadSceneMeshes(scenario);
   physics::DissectionModelInputs in = MakeDissectionInputs(scenario, meshes);
   if (!with_contact) {

@@ -14,6 +14,7 @@
 #include "app/scenario/scenario_loader.h"
 #include "app/session/dissection_setup.h"
 #include "app/session/session_runner.h"
+#include "physics/collision/surface_ray_caster.h"
 
 namespace vesica::app {
 namespace {
@@ -122,12 +123,23 @@ TEST(ArmInputTest, MissingArmKeepsTheFallbackPose) {
   input.SetForce(0, Eigen::Vector3d::Ones());  // nothing to send to: no crash
 }
 
-TEST(ArmInputTest, HookArmPushedIntoTheGallbladderFeelsItPushBack) {
+TEST(ArmInputTest, HookArmPushedIntoAnOrganFeelsItPushBack) {
   const Scenario scenario = LoadScenario(DefaultScenarioPath());
   const auto model = BuildDissectionModelFor(scenario, LoadSceneMeshes(scenario));
   FakeArm grasper, hook;
+  // The hook aimed at the gallbladder's centre, and where that line first meets an organ at rest.
+  physics::SurfaceRayCaster organs;
+  organs.AddSurface(model->liver->rest_surface);
+  organs.AddSurface(model->gallbladder_boundary.surface);
+  const physics::InstrumentMount& mount = model->instruments[1];
+  const Eigen::Vector3d aim = model->gallbladder->rest_mesh.vertices.colwise().mean().transpose();
+  const Eigen::Vector3d along_W = (aim - mount.p_RemoteCentre_W).normalized();
+  const auto hit = organs.FirstHit(physics::ToolSegment{mount.p_RemoteCentre_W, aim});
+  ASSERT_TRUE(hit.has_value()) << "the line to the gallbladder's centre meets an organ";
+  const Eigen::Vector3d along_T = TrocarFrame(mount).transpose() * along_W;  // the arm's frame
+  const double contact_m = hit->distance;
   grasper.Set(Eigen::Vector3d(0, 0, 0.04), 0.5, false, 0);
-  hook.Set(Eigen::Vector3d(0, 0, 0.08), 0.0, false, 0);
+  hook.Set((contact_m - 0.027) * along_T, 0.0, false, 0);
   std::atomic<long> servo_ticks{0};
   auto arms = std::make_shared<ArmInput>(std::array<device::HapticDevice*, 2>{&grasper, &hook}, model->instruments,
                                          device::InputFrame{}, [&] { ++servo_ticks; });
@@ -135,10 +147,9 @@ TEST(ArmInputTest, HookArmPushedIntoTheGallbladderFeelsItPushBack) {
   options.haptic_io = arms;
   SessionRunner runner(model, DefaultCauteryParams(), arms, options);
   runner.Start();
-  // The hook's shaft meets the gallbladder about 107 mm past its remote centre: go 8 mm deeper,
-  // slowly.
+  // From 27 mm short of the contact to 8 mm past it, slowly.
   for (int k = 0; k <= 50; ++k) {
-    hook.Set(Eigen::Vector3d(0, 0, 0.08 + k * 0.035 / 50.0), 0.0, false, 0);
+    hook.Set((contact_m - 0.027 + k * 0.035 / 50.0) * along_T, 0.0, false, 0);
     std::this_thread::sleep_for(10ms);
   }
   // 0.3 s of session time at the deepest point (wall time would do on an idle machine only).
@@ -152,10 +163,10 @@ TEST(ArmInputTest, HookArmPushedIntoTheGallbladderFeelsItPushBack) {
   EXPECT_TRUE(s.error.empty()) << s.error;
   EXPECT_GT(servo_ticks.load(), 100);
   EXPECT_GT(hook.force_calls(), 100);
-  // The gallbladder resists: a push back out along the shaft (trocar frame -z; the soft, curved
-  // wall also pushes the tip sideways), felt by the hook and not by the grasper.
+  // The organ resists: a push back out along the shaft (a curved wall also pushes the tip
+  // sideways), felt by the hook and not by the grasper.
   const Eigen::Vector3d f_T = hook.force();
-  EXPECT_LT(f_T.z(), -0.01) << f_T.transpose();
+  EXPECT_LT(f_T.dot(along_T), -0.01) << f_T.transpose();
   EXPECT_GT(f_T.norm(), 0.02) << f_T.transpose();
   EXPECT_EQ(grasper.force(), Eigen::Vector3d::Zero());
   runner.End();

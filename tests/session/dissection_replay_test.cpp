@@ -64,11 +64,13 @@ std::shared_ptr<const physics::DissectionModel> DissectionReplayTest::model_;
 
 TEST_F(DissectionReplayTest, CommittedRecordingFreesTheGallbladderTwiceBitIdentically) {
   const ReplayRun a = Replay();
-  // Free, finite, energy bounded (the gallbladder weighs ~30 g: 10 mJ is 0.8 m/s), no rollback.
+  // Free, finite, energy bounded, no rollback. The energy includes the assistant's hold on the
+  // fundus (95 nodes on 40 N/m springs displaced 3 mm: up to 17 mJ while it lifts the fundus);
+  // 30 mJ more than that would be the ~30 g gallbladder moving at 1.4 m/s, a blow-up.
   EXPECT_TRUE(a.outcome.finite);
   EXPECT_TRUE(a.metrics.gallbladder_free);
   EXPECT_GT(a.outcome.gallbladder_free_at_s, 0.0);
-  EXPECT_LT(a.outcome.max_energy_J, 0.01);
+  EXPECT_LT(a.outcome.max_energy_J, 0.017 + 0.03);
   EXPECT_EQ(a.outcome.rejected_fem_steps, 0);
   EXPECT_EQ(static_cast<long>(a.outcome.step_wall_ms.size()), a.outcome.steps);  // one time a step
   EXPECT_EQ(a.metrics.springs_cut, a.metrics.springs_total);
