@@ -175,11 +175,23 @@ NodeIdentity CalibrationLink::Connect() {
   ReceiveAll();  // a boot-up Identity already waiting (negotiated nothing yet) is not the answer
   identity_seen_ = false;
   Send(fp::Hello{config_.node_id, fp::kProtocolMajor, fp::kProtocolMinor});
-  const fp::Nanoseconds until = transport_.now() + config_.reply_timeout;
-  while (!identity_seen_ && transport_.now() <= until) {
+  fp::Nanoseconds until = transport_.now() + config_.reply_timeout;
+  bool hello_repeated = false;
+  while (transport_.now() <= until) {
     WaitPeriod();
     ReceiveAll();
     if (abort_requested_) CheckStop();
+    if (!identity_seen_) continue;
+    // An Identity that negotiated nothing is the node's boot-up announcement overtaking our Hello
+    // (a node that started, or rebooted, just now): ask once more before calling it too old.
+    if (identity_.negotiated_minor == 0xFF && !hello_repeated) {
+      hello_repeated = true;
+      identity_seen_ = false;
+      Send(fp::Hello{config_.node_id, fp::kProtocolMajor, fp::kProtocolMinor});
+      until = transport_.now() + config_.reply_timeout;
+      continue;
+    }
+    break;
   }
   if (!identity_seen_)
     throw CalibrationAbort(AbortReason::kNoAnswer, "no answer from node " + std::to_string(config_.node_id) +

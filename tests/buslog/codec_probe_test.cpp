@@ -24,7 +24,7 @@ TEST(CodecProbeTest, UnusedInputAndStateBitsMustBeZero) {
   const CodecProbe hb = probe_codec(MessageKind::Heartbeat);
   ASSERT_EQ(hb.reserved.size(), 1u);
   EXPECT_EQ(hb.reserved[0].offset, 1);
-  EXPECT_EQ(hb.reserved[0].mask, 0xF0);  // state bits 0..2, enabled bit 3
+  EXPECT_EQ(hb.reserved[0].mask, 0xE0);  // state bits 0..2, enabled bit 3, not_homed bit 4 (1.4)
   EXPECT_TRUE(probe_codec(MessageKind::JointState).reserved.empty());  // byte 1 fully used
 }
 
