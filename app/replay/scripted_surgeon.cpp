@@ -40,6 +40,51 @@ physics::Vertices VertexNormals(const physics::TriangleMesh& surface, const phys
   n.rowwise().normalize();
   return n;
 }
+
+// Taking hold of the gallbladder at one surface vertex: move to just outside it, keep still for
+// kDwell, close the jaws, keep still for kDwell, then check the hold. Every event sits between
+// stills, so a replay that interpolates the recording's frames reproduces it.
+struct GraspApproach {
+  double arrived_at = -1;
+  double offset_m = 0.001;  // how far outside the surface the jaws close; deeper after each miss
+
+  void Restart() { arrived_at = -1, offset_m = 0.001; }
+
+  /// One step toward `vertex`; true once the closed jaws hold the gallbladder.
+  bool Step(double t, const physics::DissectionScene& scene, const physics::TriangleMesh& surface, int vertex,
+            double max_step, Vec3& tip, double& jaw) {
+    constexpr double kDwell = 0.1;
+    if (arrived_at < 0) {
+      const physics::Vertices x = scene.gallbladder_surface_positions();
+      const physics::Vertices n = VertexNormals(surface, x);
+      const Vec3 target = x.row(vertex).transpose() + offset_m * n.row(vertex).transpose();
+      tip = MoveToward(tip, target, max_step);
+      if ((tip - target).norm() < 1e-9) arrived_at = t;
+    } else if (jaw > 0.0 && t - arrived_at >= kDwell) {
+      jaw = 0.0;
+    } else if (jaw == 0.0 && t - arrived_at >= 2 * kDwell) {
+      arrived_at = -1;
+      if (scene.grasp().state() == physics::GraspStateMachine::State::kHolding) return true;
+      jaw = 0.5;
+      offset_m -= 0.0005;
+    }
+    return false;
+  }
+};
+
+// One physics step with both tips where the plan puts them; the input goes into `frames`.
+SessionStepReport StepBoth(DissectionSession& session, const physics::InstrumentMount& grasper, const Vec3& grasp_tip,
+                           double jaw, const physics::InstrumentMount& hook, const Vec3& hook_tip, bool pedal,
+                           std::vector<device::InputFrame>& frames) {
+  device::InputFrame f;
+  f.time_s = session.time_s();
+  f.instruments[0].pose = PoseFor(grasper, grasp_tip, jaw);
+  f.instruments[1].pose = PoseFor(hook, hook_tip, 0.0);
+  f.instruments[1].pedal = pedal;
+  const SessionStepReport r = session.Step(f);
+  frames.push_back(f);
+  return r;
+}
 }  // namespace
 
 namespace {
@@ -87,8 +132,8 @@ std::vector<device::InputFrame> RunFundusPlan(DissectionSession& session, const 
   const Vec3 hook_home = hook.p_RemoteCentre_W + 0.05 * hook.reference_direction_W;
   Vec3 hook_tip = hook_home;
   Vec3 retract_origin = Vec3::Zero();
-  double arrived_at = -1;
-  double jaw = 0.5, approach_offset = 0.001, phase_start = 0, spring_start = 0;
+  GraspApproach approach;
+  double jaw = 0.5, phase_start = 0, spring_start = 0;
   int target_spring = -1;
   std::vector<device::InputFrame> frames;
   const int total = static_cast<int>(model.tissue.springs.size());
@@ -96,40 +141,20 @@ std::vector<device::InputFrame> RunFundusPlan(DissectionSession& session, const 
   while (phase != Phase::kDone && session.time_s() < st.max_session_s) {
     const double t = session.time_s();
     bool pedal = false;
-    const physics::Vertices x = scene.gallbladder_surface_positions();
     switch (phase) {
-      case Phase::kApproach: {
-        // Move to just outside the fundus, keep still for kDwell, close, keep still for kDwell,
-        // then check the hold: every event sits between stills, so a replay that interpolates
-        // the recording's frames reproduces it.
-        constexpr double kDwell = 0.1;
-        if (arrived_at < 0) {
-          const physics::Vertices n = VertexNormals(surface, x);
-          const Vec3 target = x.row(fundus).transpose() + approach_offset * n.row(fundus).transpose();
-          grasp_tip = MoveToward(grasp_tip, target, max_step);
-          if ((grasp_tip - target).norm() < 1e-9) arrived_at = t;
-        } else if (jaw > 0.0 && t - arrived_at >= kDwell) {
-          jaw = 0.0;
-        } else if (jaw == 0.0 && t - arrived_at >= 2 * kDwell) {
-          if (scene.grasp().state() == physics::GraspStateMachine::State::kHolding) {
-            phase = Phase::kRetract;
-            retract_origin = grasp_tip;
-            phase_start = t;
-          } else {
-            jaw = 0.5;
-            approach_offset -= 0.0005;  // a little deeper next time
-          }
-          arrived_at = -1;
+      case Phase::kApproach:
+        if (approach.Step(t, scene, surface, fundus, max_step, grasp_tip, jaw)) {
+          phase = Phase::kRetract;
+          retract_origin = grasp_tip;
+          phase_start = t;
         }
         break;
-      }
       case Phase::kRetract:
       case Phase::kDissect: {
         if (scene.grasp().state() != physics::GraspStateMachine::State::kHolding) {  // slipped: take it again
           phase = Phase::kApproach;
           jaw = 0.5;
-          approach_offset = 0.001;
-          arrived_at = -1;
+          approach.Restart();
           break;
         }
         const double cut = static_cast<double>(total - scene.tissue().num_alive()) / total;
@@ -177,13 +202,7 @@ std::vector<device::InputFrame> RunFundusPlan(DissectionSession& session, const 
       case Phase::kDone:
         break;
     }
-    device::InputFrame f;
-    f.time_s = t;
-    f.instruments[0].pose = PoseFor(grasper, grasp_tip, jaw);
-    f.instruments[1].pose = PoseFor(hook, hook_tip, 0.0);
-    f.instruments[1].pedal = pedal;
-    const SessionStepReport r = session.Step(f);
-    frames.push_back(f);
+    const SessionStepReport r = StepBoth(session, grasper, grasp_tip, jaw, hook, hook_tip, pedal, frames);
     if (st.log_progress && session.scene().steps() % static_cast<long>(1.0 / h + 0.5) == 0) {
       std::fprintf(
           stderr,
@@ -200,7 +219,6 @@ std::vector<device::InputFrame> RunFundusPlan(DissectionSession& session, const 
   }
   return frames;
 }
-
 
 // The membrane triangles still attached (both springs alive), with their centroids now.
 struct MembraneTarget {
@@ -297,7 +315,8 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
   const Vec3 hook_home = hook.p_RemoteCentre_W + 0.05 * hook.reference_direction_W;
   Vec3 hook_tip = hook_home, burn_from = hook_home, burn_to = hook_home;
   Vec3 retract_origin = Vec3::Zero();
-  double arrived_at = -1, jaw = 0.5, approach_offset = 0.001, phase_start = 0, still_since = -1;
+  GraspApproach approach;
+  double jaw = 0.5, phase_start = 0, still_since = -1;
   int target_triangle = -1, tries_on_target = 0;
   std::vector<double> gave_up_at(static_cast<size_t>(scene.tissue().membrane.triangles.rows()), -1.0);
   std::vector<device::InputFrame> frames;
@@ -310,37 +329,20 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
       case Phase::kSettle:
         if (t >= 1.0) phase = Phase::kApproach;  // the organs settle under the assistant's hold
         break;
-      case Phase::kApproach: {
-        constexpr double kDwell = 0.1;  // events between stills: a replay's interpolation keeps them
-        if (arrived_at < 0) {
-          const physics::Vertices x = scene.gallbladder_surface_positions();
-          const physics::Vertices n = VertexNormals(surface, x);
-          const Vec3 target = x.row(grip).transpose() + approach_offset * n.row(grip).transpose();
-          grasp_tip = MoveToward(grasp_tip, target, max_step);
-          if ((grasp_tip - target).norm() < 1e-9) arrived_at = t;
-        } else if (jaw > 0.0 && t - arrived_at >= kDwell) {
-          jaw = 0.0;
-        } else if (jaw == 0.0 && t - arrived_at >= 2 * kDwell) {
-          if (scene.grasp().state() == physics::GraspStateMachine::State::kHolding) {
-            phase = Phase::kRetract;
-            retract_origin = grasp_tip;
-            pull_m = 0;
-            phase_start = t;
-          } else {
-            jaw = 0.5;
-            approach_offset -= 0.0005;
-          }
-          arrived_at = -1;
+      case Phase::kApproach:
+        if (approach.Step(t, scene, surface, grip, max_step, grasp_tip, jaw)) {
+          phase = Phase::kRetract;
+          retract_origin = grasp_tip;
+          pull_m = 0;
+          phase_start = t;
         }
         break;
-      }
       case Phase::kRetract:
       case Phase::kDissect: {
         if (scene.grasp().state() != physics::GraspStateMachine::State::kHolding) {  // slipped: take it again
           phase = Phase::kApproach;
           jaw = 0.5;
-          approach_offset = 0.001;
-          arrived_at = -1;
+          approach.Restart();
           hook_move = HookMove::kChoose;
           break;
         }
@@ -370,7 +372,8 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
             target_triangle = -1;
             double best = std::numeric_limits<double>::infinity();
             for (const MembraneTarget& m : AttachedMembrane(scene)) {
-              if (gave_up_at[static_cast<size_t>(m.triangle)] >= 0 && t - gave_up_at[static_cast<size_t>(m.triangle)] < 5)
+              if (gave_up_at[static_cast<size_t>(m.triangle)] >= 0 &&
+                  t - gave_up_at[static_cast<size_t>(m.triangle)] < 5)
                 continue;
               const double d = (m.centroid - neck).norm();
               if (d >= best) continue;
@@ -416,8 +419,7 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
                 lateral = traction_for(x.row(grip).transpose());
                 phase = Phase::kApproach;
                 jaw = 0.5;
-                approach_offset = 0.001;
-                arrived_at = -1;
+                approach.Restart();
                 hook_move = HookMove::kChoose;
                 stuck_since = -1;
                 if (st.log_progress) std::fprintf(stderr, "  re-grasp at %d (t %.2f s)\n", grip, t);
@@ -495,18 +497,11 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
       case Phase::kDone:
         break;
     }
-    device::InputFrame f;
-    f.time_s = t;
-    f.instruments[0].pose = PoseFor(grasper, grasp_tip, jaw);
-    f.instruments[1].pose = PoseFor(hook, hook_tip, 0.0);
-    f.instruments[1].pedal = pedal;
-    const SessionStepReport r = session.Step(f);
-    frames.push_back(f);
+    const SessionStepReport r = StepBoth(session, grasper, grasp_tip, jaw, hook, hook_tip, pedal, frames);
     if (st.log_progress && session.scene().steps() % static_cast<long>(1.0 / h + 0.5) == 0)
-      std::fprintf(stderr, "t %6.2f s phase %d springs alive %3d grasp %d target %4d f %.2f/%.2f N\n",
-                   session.time_s(), static_cast<int>(phase), scene.tissue().num_alive(),
-                   static_cast<int>(scene.grasp().state()), target_triangle, r.physics.tool_force_N[0].norm(),
-                   r.physics.tool_force_N[1].norm());
+      std::fprintf(stderr, "t %6.2f s phase %d springs alive %3d grasp %d target %4d f %.2f/%.2f N\n", session.time_s(),
+                   static_cast<int>(phase), scene.tissue().num_alive(), static_cast<int>(scene.grasp().state()),
+                   target_triangle, r.physics.tool_force_N[0].norm(), r.physics.tool_force_N[1].norm());
   }
   return frames;
 }
