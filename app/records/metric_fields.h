@@ -18,7 +18,7 @@ struct MetricField {
   int since_schema = 1;  // the session schema version that added the column (older stores read 0)
 };
 
-inline constexpr std::array<MetricField, 20> kMetricFields{{
+inline constexpr std::array<MetricField, 34> kMetricFields{{
     {"duration_s", &SessionMetrics::duration_s},
     {"path_length_left_m", &SessionMetrics::path_length_left_m},
     {"path_length_right_m", &SessionMetrics::path_length_right_m},
@@ -39,6 +39,20 @@ inline constexpr std::array<MetricField, 20> kMetricFields{{
     {"sample_distance_m", &SessionMetrics::sample_distance_m, 3},
     {"nogo_crossings", &SessionMetrics::nogo_crossings, 3},
     {"insertion_attempts", &SessionMetrics::insertion_attempts, 3},
+    {"calot_step", &SessionMetrics::calot_step, 4},
+    {"cvs_achieved", &SessionMetrics::cvs_achieved, 4},
+    {"cvs_time_s", &SessionMetrics::cvs_time_s, 4},
+    {"cvs_before_first_clip", &SessionMetrics::cvs_before_first_clip, 4},
+    {"cystic_duct_clips", &SessionMetrics::cystic_duct_clips, 4},
+    {"cystic_artery_clips", &SessionMetrics::cystic_artery_clips, 4},
+    {"cystic_duct_clips_correct", &SessionMetrics::cystic_duct_clips_correct, 4},
+    {"cystic_artery_clips_correct", &SessionMetrics::cystic_artery_clips_correct, 4},
+    {"cystic_duct_divided_between_clips", &SessionMetrics::cystic_duct_divided_between_clips, 4},
+    {"cystic_artery_divided_between_clips", &SessionMetrics::cystic_artery_divided_between_clips, 4},
+    {"bleeding_events", &SessionMetrics::bleeding_events, 4},
+    {"bile_leaks", &SessionMetrics::bile_leaks, 4},
+    {"bile_duct_injuries", &SessionMetrics::bile_duct_injuries, 4},
+    {"calot_passed", &SessionMetrics::calot_passed, 4},
 }};
 
 /// Field-by-field equality (exact, doubles included: the stores round-trip doubles bit for bit).

@@ -40,6 +40,20 @@ inline constexpr std::array<MetricDisplayUnit, kMetricFields.size()> kMetricDisp
     {"sample_distance_m", "sample_distance_mm", "mm", 1e3},
     {"nogo_crossings", "nogo_crossings", "", 1.0},
     {"insertion_attempts", "insertion_attempts", "", 1.0},
+    {"calot_step", "calot_step", "", 1.0},
+    {"cvs_achieved", "cvs_achieved", "", 1.0},
+    {"cvs_time_s", "cvs_time_s", "s", 1.0},
+    {"cvs_before_first_clip", "cvs_before_first_clip", "", 1.0},
+    {"cystic_duct_clips", "cystic_duct_clips", "", 1.0},
+    {"cystic_artery_clips", "cystic_artery_clips", "", 1.0},
+    {"cystic_duct_clips_correct", "cystic_duct_clips_correct", "", 1.0},
+    {"cystic_artery_clips_correct", "cystic_artery_clips_correct", "", 1.0},
+    {"cystic_duct_divided_between_clips", "cystic_duct_divided_between_clips", "", 1.0},
+    {"cystic_artery_divided_between_clips", "cystic_artery_divided_between_clips", "", 1.0},
+    {"bleeding_events", "bleeding_events", "", 1.0},
+    {"bile_leaks", "bile_leaks", "", 1.0},
+    {"bile_duct_injuries", "bile_duct_injuries", "", 1.0},
+    {"calot_passed", "calot_passed", "", 1.0},
 }};
 
 consteval bool DisplayUnitsFollowMetricFields() {

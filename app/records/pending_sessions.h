@@ -5,8 +5,8 @@
 //   trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path, replay,
 //   unfinished, physics_lag_s, procedure, then every SessionMetrics field (kMetricFields order);
 // doubles in shortest round-trip form (bit-exact), bools 1/0. Rows are read by the header's
-// column names, so a file an older build left (without procedure and the biopsy metrics) reads
-// with those at their defaults.
+// column names, so a file an older build left (without procedure, the biopsy or the Calot metrics)
+// reads with those at their defaults.
 
 #include <filesystem>
 #include <string>

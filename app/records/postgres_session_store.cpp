@@ -227,6 +227,10 @@ PostgresSessionStore::PostgresSessionStore(const std::string& connection_string)
     }
     if (version == 2) {
       for (const auto& sql : MigrateSchemaV2ToV3Sql(SqlDialect::kPostgres)) pg_->Exec(sql, {}, step);
+      version = 3;
+    }
+    if (version == 3) {
+      for (const auto& sql : MigrateSchemaV3ToV4Sql(SqlDialect::kPostgres)) pg_->Exec(sql, {}, step);
     }
     pg_->Exec("DELETE FROM vesica_schema", {}, step);
     pg_->Exec("INSERT INTO vesica_schema (version) VALUES ($1)", {std::to_string(kSessionSchemaVersion)}, step);

@@ -62,7 +62,7 @@ class SessionStore {
 enum class StoreAccess { kReadWrite, kReadOnly };
 
 /// The schema version this build writes; older stores are migrated on open, newer ones refused.
-inline constexpr int kSessionSchemaVersion = 3;
+inline constexpr int kSessionSchemaVersion = 4;
 
 /// Throws RecordsError naming the first bad field (empty trainee, end before start, negative or
 /// non-finite metric or physics_lag_s).

@@ -33,6 +33,18 @@ std::string Placeholder(SqlDialect dialect, int index_from_1) {
   return placeholder;
 }
 
+// ALTER TABLE statements adding the metric columns that schema `version` introduced, default 0.
+void AddMetricColumnsOf(int version, SqlDialect dialect, std::vector<std::string>& statements) {
+  const bool pg = dialect == SqlDialect::kPostgres;
+  for (const auto& field : kMetricFields) {
+    if (field.since_schema != version) continue;
+    const bool flag = std::holds_alternative<bool SessionMetrics::*>(field.member);
+    const std::string zero = flag && pg ? "FALSE" : "0";
+    statements.push_back("ALTER TABLE sessions ADD COLUMN " + Quoted(field.name) + " " +
+                         MetricColumnType(field, dialect) + " NOT NULL DEFAULT " + zero);
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> CreateSchemaV1Sql(SqlDialect dialect) {
@@ -72,17 +84,16 @@ std::vector<std::string> MigrateSchemaV1ToV2Sql(SqlDialect dialect) {
 }
 
 std::vector<std::string> MigrateSchemaV2ToV3Sql(SqlDialect dialect) {
-  const bool pg = dialect == SqlDialect::kPostgres;
   std::vector<std::string> statements{
       "ALTER TABLE sessions ADD COLUMN procedure TEXT NOT NULL DEFAULT 'cholecystectomy' CHECK (procedure IN "
       "('cholecystectomy', 'needle_biopsy'))"};
-  for (const auto& field : kMetricFields) {
-    if (field.since_schema != 3) continue;
-    const bool flag = std::holds_alternative<bool SessionMetrics::*>(field.member);
-    const std::string zero = flag && pg ? "FALSE" : "0";
-    statements.push_back("ALTER TABLE sessions ADD COLUMN " + Quoted(field.name) + " " +
-                         MetricColumnType(field, dialect) + " NOT NULL DEFAULT " + zero);
-  }
+  AddMetricColumnsOf(3, dialect, statements);
+  return statements;
+}
+
+std::vector<std::string> MigrateSchemaV3ToV4Sql(SqlDialect dialect) {
+  std::vector<std::string> statements;
+  AddMetricColumnsOf(4, dialect, statements);
   return statements;
 }
 
@@ -105,7 +116,8 @@ std::string SessionSelectColumns(int schema_version) {
   std::string columns = "id, trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path, ";
   columns += schema_version >= 2 ? "replay, unfinished, physics_lag_s" : "0, 0, 0";
   columns += schema_version >= 3 ? ", procedure" : ", 'cholecystectomy'";
-  for (const auto& field : kMetricFields) columns += ", " + (field.since_schema <= schema_version ? Quoted(field.name) : "0");
+  for (const auto& field : kMetricFields)
+    columns += ", " + (field.since_schema <= schema_version ? Quoted(field.name) : "0");
   return columns;
 }
 

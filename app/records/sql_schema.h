@@ -10,6 +10,9 @@
 // Version 2 adds to sessions: replay, unfinished (booleans), physics_lag_s (double), default 0.
 // Version 3 adds to sessions: procedure (text, 'cholecystectomy' or 'needle_biopsy', default
 //   'cholecystectomy') and the needle-biopsy metrics (kMetricFields with since_schema 3), default 0.
+// Version 4 adds to sessions: the Calot's triangle metrics of a cholecystectomy (kMetricFields
+//   with since_schema 4, calot_step first), default 0: a session stored before reads as one
+//   without the Calot step.
 
 #include <string>
 #include <vector>
@@ -27,6 +30,9 @@ std::vector<std::string> MigrateSchemaV1ToV2Sql(SqlDialect dialect);
 
 /// Statements that turn schema version 2 into version 3 (run in one transaction).
 std::vector<std::string> MigrateSchemaV2ToV3Sql(SqlDialect dialect);
+
+/// Statements that turn schema version 3 into version 4 (run in one transaction).
+std::vector<std::string> MigrateSchemaV3ToV4Sql(SqlDialect dialect);
 
 /// INSERT INTO sessions (...) VALUES (...) with the parameters in SessionParameterOrder, and
 /// RETURNING id.

@@ -247,6 +247,10 @@ void SqliteSessionStore::OpenReadWrite() {
     }
     if (version == 2) {
       for (const auto& sql : MigrateSchemaV2ToV3Sql(SqlDialect::kSqlite)) db_->Exec(sql, step);
+      version = 3;
+    }
+    if (version == 3) {
+      for (const auto& sql : MigrateSchemaV3ToV4Sql(SqlDialect::kSqlite)) db_->Exec(sql, step);
     }
     db_->Exec("PRAGMA user_version=" + std::to_string(kSessionSchemaVersion), step);
     transaction.Commit(step);

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "app/records/sql_schema.h"
 #include "tests/records/postgres_test_server.h"
 #include "tests/records/sample_records.h"
 
@@ -65,6 +66,39 @@ TEST(PostgresSessionStoreTest, ChosenByOpenSessionStoreForAConnectionString) {
   EXPECT_EQ(PostgresTestServer::Query(location, "SELECT count(*) FROM sessions"), "1");
   EXPECT_EQ(PostgresTestServer::Query(location, "SELECT version FROM vesica_schema"),
             std::to_string(kSessionSchemaVersion));
+}
+
+TEST(PostgresSessionStoreTest, SchemaVersion3IsMigratedAsSessionsWithoutTheCalotStep) {
+  auto& server = PostgresTestServer::Shared();
+  ASSERT_TRUE(server.running()) << server.error();
+  const std::string location = server.NewDatabase();
+  // Version 3 as a build before schema 4 left it, with one cholecystectomy (columns named).
+  std::string sql = "BEGIN; CREATE TABLE vesica_schema (version INTEGER NOT NULL);";
+  for (const auto& statement : CreateSchemaV1Sql(SqlDialect::kPostgres)) sql += statement + ";";
+  for (const auto& statement : MigrateSchemaV1ToV2Sql(SqlDialect::kPostgres)) sql += statement + ";";
+  for (const auto& statement : MigrateSchemaV2ToV3Sql(SqlDialect::kPostgres)) sql += statement + ";";
+  sql +=
+      "INSERT INTO trainees VALUES ('old'); INSERT INTO sessions (trainee_id, scenario, station, started_unix_s, "
+      "ended_unix_s, input_recording_path, \"duration_s\", \"path_length_left_m\", \"path_length_right_m\", "
+      "\"slips\", \"cautery_on_s\", \"liver_damage_m2\", \"gallbladder_damage_m2\", \"max_force_N\", "
+      "\"mean_force_N\", \"tissue_removed_fraction\", \"springs_cut\", \"springs_total\", "
+      "\"gallbladder_free\", \"perforation\", \"success\") VALUES ('old', 'cholecystectomy', 'station-1', "
+      "1795406400, 1795406700, '', 300.5, 1.25, 0.5, 2, 40, 1e-5, 0, 4.5, 0.75, 1, 210, 210, true, false, true); "
+      "INSERT INTO vesica_schema VALUES (3); COMMIT;";
+  PostgresTestServer::Query(location, sql);
+  const auto store = OpenSessionStore(location);
+  EXPECT_EQ(store->SchemaVersion(), 4);
+  const auto old = store->List("old");
+  ASSERT_EQ(old.size(), 1u);
+  EXPECT_EQ(old[0].record.metrics.duration_s, 300.5);
+  EXPECT_TRUE(old[0].record.metrics.success);
+  EXPECT_FALSE(old[0].record.metrics.calot_step);
+  EXPECT_EQ(old[0].record.metrics.bile_duct_injuries, 0);
+  const SessionRecord calot = SampleRecord(4, "old");
+  ASSERT_TRUE(calot.metrics.calot_step);
+  const auto id = store->Add(calot);
+  EXPECT_EQ(store->Get(id)->record, calot);
+  EXPECT_EQ(store->CheckIntegrity(), "ok");
 }
 
 TEST(PostgresSessionStoreTest, ServerGoneFailsEachCallWithRecordsError) {

@@ -40,6 +40,23 @@ SessionRecord SampleRecord(int index, const std::string& trainee_id) {
   m.sample_distance_m = 0.0035 * x + 1e-9;
   m.nogo_crossings = index % 4;
   m.insertion_attempts = 1 + index;
+  // The Calot's triangle step (schema 4) in the cholecystectomies, each flag differing between records.
+  if (r.procedure == Procedure::kCholecystectomy) {
+    m.calot_step = true;
+    m.cvs_achieved = index % 4 != 1;
+    m.cvs_time_s = m.cvs_achieved ? 60.0 + x / 7.0 : 0.0;
+    m.cvs_before_first_clip = index % 2 == 0;
+    m.cystic_duct_clips = 3 + index % 2;
+    m.cystic_artery_clips = 2 + index % 3;
+    m.cystic_duct_clips_correct = index % 4 == 0;
+    m.cystic_artery_clips_correct = index % 4 != 0;
+    m.cystic_duct_divided_between_clips = index % 5 != 1;
+    m.cystic_artery_divided_between_clips = index % 5 == 1;
+    m.bleeding_events = index % 3;
+    m.bile_leaks = index % 2;
+    m.bile_duct_injuries = index % 7 == 1 ? 1 : 0;
+    m.calot_passed = m.cvs_before_first_clip && m.bleeding_events == 0 && m.bile_duct_injuries == 0;
+  }
   return r;
 }
 

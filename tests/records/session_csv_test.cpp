@@ -76,7 +76,11 @@ TEST(SessionCsvTest, HeaderIsFixedColumnsThenEveryMetricNamedWithItsDisplayUnit)
                           "path_length_right_cm", "slips", "cautery_on_s", "liver_damage_mm2", "gallbladder_damage_mm2",
                           "max_force_N", "mean_force_N", "tissue_removed_percent", "springs_cut", "springs_total",
                           "gallbladder_free", "perforation", "success", "biopsy_sampled", "time_to_sample_s",
-                          "sample_distance_mm", "nogo_crossings", "insertion_attempts"));
+                          "sample_distance_mm", "nogo_crossings", "insertion_attempts", "calot_step", "cvs_achieved",
+                          "cvs_time_s", "cvs_before_first_clip", "cystic_duct_clips", "cystic_artery_clips",
+                          "cystic_duct_clips_correct", "cystic_artery_clips_correct",
+                          "cystic_duct_divided_between_clips", "cystic_artery_divided_between_clips", "bleeding_events",
+                          "bile_leaks", "bile_duct_injuries", "calot_passed"));
 }
 
 TEST(SessionCsvTest, EmptyListIsHeaderOnly) {
@@ -105,7 +109,7 @@ TEST(SessionCsvTest, RowsReadBackToTheSameValuesIncludingAwkwardText) {
   EXPECT_EQ(rows[1][4], "2026-11-23T04:00:00Z");
   EXPECT_EQ(rows[1][10], "cholecystectomy");
   EXPECT_EQ(rows[3][10], "needle_biopsy");
-  EXPECT_EQ(rows[1][11], "300.0833333333333");  // duration_s = 299.75 + 1/3
+  EXPECT_EQ(rows[1][11], "300.0833333333333");   // duration_s = 299.75 + 1/3
   EXPECT_EQ(rows[1][12], "14.285714285714285");  // path_length_left_cm = 100 / 7
   EXPECT_EQ(rows[1][16], "15");                  // liver_damage_mm2 = 1.5e-5 m² x 1e6
   EXPECT_EQ(rows[1][20], "50");                  // tissue_removed_percent = 1/2 x 100

@@ -5,14 +5,12 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
 #include <sqlite3.h>
 
 #include <fstream>
 #include <sstream>
 
 #include "app/records/sql_schema.h"
-
 #include "tests/records/sample_records.h"
 #include "tests/records/temp_dir.h"
 
@@ -51,8 +49,9 @@ void WriteSchemaV1Database(const std::filesystem::path& path) {
   std::string sql = "BEGIN;";
   for (const auto& statement : CreateSchemaV1Sql(SqlDialect::kSqlite)) sql += statement + ";";
   sql += "INSERT INTO trainees VALUES ('old');";
-  sql += "INSERT INTO sessions VALUES (1, 'old', 'cholecystectomy', 'station-1', 1795406400, 1795406700, '', "
-         "300.5, 1.25, 0.5, 2, 40, 1e-5, 0, 4.5, 0.75, 1, 210, 210, 1, 0, 1);";
+  sql +=
+      "INSERT INTO sessions VALUES (1, 'old', 'cholecystectomy', 'station-1', 1795406400, 1795406700, '', "
+      "300.5, 1.25, 0.5, 2, 40, 1e-5, 0, 4.5, 0.75, 1, 210, 210, 1, 0, 1);";
   sql += "PRAGMA user_version=1; COMMIT;";
   RawSql(path, sql);
 }
@@ -83,8 +82,9 @@ void WriteSchemaV2Database(const std::filesystem::path& path) {
   for (const auto& statement : CreateSchemaV1Sql(SqlDialect::kSqlite)) sql += statement + ";";
   for (const auto& statement : MigrateSchemaV1ToV2Sql(SqlDialect::kSqlite)) sql += statement + ";";
   sql += "INSERT INTO trainees VALUES ('old');";
-  sql += "INSERT INTO sessions VALUES (1, 'old', 'cholecystectomy', 'station-1', 1795406400, 1795406700, '', "
-         "300.5, 1.25, 0.5, 2, 40, 1e-5, 0, 4.5, 0.75, 1, 210, 210, 1, 0, 1, 1, 0, 2.5);";
+  sql +=
+      "INSERT INTO sessions VALUES (1, 'old', 'cholecystectomy', 'station-1', 1795406400, 1795406700, '', "
+      "300.5, 1.25, 0.5, 2, 40, 1e-5, 0, 4.5, 0.75, 1, 210, 210, 1, 0, 1, 1, 0, 2.5);";
   sql += "PRAGMA user_version=2; COMMIT;";
   RawSql(path, sql);
 }
@@ -94,7 +94,7 @@ TEST(SqliteSessionStoreTest, SchemaVersion2IsMigratedAsCholecystectomiesWithNoBi
   const auto path = dir.path() / "sessions.sqlite";
   WriteSchemaV2Database(path);
   SqliteSessionStore store(path);
-  EXPECT_EQ(store.SchemaVersion(), 3);
+  EXPECT_EQ(store.SchemaVersion(), kSessionSchemaVersion);
   const auto old = store.List("old");
   ASSERT_EQ(old.size(), 1u);
   const SessionRecord& r = old[0].record;
@@ -111,6 +111,77 @@ TEST(SqliteSessionStoreTest, SchemaVersion2IsMigratedAsCholecystectomiesWithNoBi
   const auto id = store.Add(biopsy);
   EXPECT_EQ(store.Get(id)->record, biopsy);
   EXPECT_EQ(store.CheckIntegrity(), "ok");
+}
+
+// A version-3 database as a build before schema 4 left it: a cholecystectomy and a biopsy of
+// trainee "old", with the columns of version 3 named (so the test does not depend on their order).
+void WriteSchemaV3Database(const std::filesystem::path& path) {
+  std::string sql = "BEGIN;";
+  for (const auto& statement : CreateSchemaV1Sql(SqlDialect::kSqlite)) sql += statement + ";";
+  for (const auto& statement : MigrateSchemaV1ToV2Sql(SqlDialect::kSqlite)) sql += statement + ";";
+  for (const auto& statement : MigrateSchemaV2ToV3Sql(SqlDialect::kSqlite)) sql += statement + ";";
+  sql += "INSERT INTO trainees VALUES ('old');";
+  const std::string columns =
+      "(id, trainee_id, scenario, station, started_unix_s, ended_unix_s, input_recording_path, replay, unfinished, "
+      "physics_lag_s, procedure, duration_s, path_length_left_m, path_length_right_m, slips, cautery_on_s, "
+      "liver_damage_m2, gallbladder_damage_m2, max_force_N, mean_force_N, tissue_removed_fraction, springs_cut, "
+      "springs_total, gallbladder_free, perforation, success, biopsy_sampled, time_to_sample_s, sample_distance_m, "
+      "nogo_crossings, insertion_attempts)";
+  sql += "INSERT INTO sessions " + columns +
+         " VALUES (1, 'old', 'cholecystectomy', 'station-1', 1795406400, 1795406700, '', 0, 0, 0.5, "
+         "'cholecystectomy', 300.5, 1.25, 0.5, 2, 40, 1e-5, 0, 4.5, 0.75, 1, 210, 210, 1, 0, 1, 0, 0, 0, 0, 0);";
+  sql += "INSERT INTO sessions " + columns +
+         " VALUES (2, 'old', 'needle-biopsy-0', 'station-1', 1795407000, 1795407100, '', 0, 0, 0, "
+         "'needle_biopsy', 100, 0, 0, 0, 0, 0, 0, 2.5, 1.5, 0, 0, 0, 0, 0, 1, 1, 95.5, 0.007, 1, 2);";
+  sql += "PRAGMA user_version=3; COMMIT;";
+  RawSql(path, sql);
+}
+
+TEST(SqliteSessionStoreTest, SchemaVersion3IsMigratedAsSessionsWithoutTheCalotStep) {
+  TempDir dir;
+  const auto path = dir.path() / "sessions.sqlite";
+  WriteSchemaV3Database(path);
+  SqliteSessionStore store(path);
+  EXPECT_EQ(store.SchemaVersion(), 4);
+  EXPECT_EQ(SqliteSessionStore(path, StoreAccess::kReadOnly).SchemaVersion(), 4);  // the file says so too
+  const auto old = store.List("old");
+  ASSERT_EQ(old.size(), 2u);
+  const SessionMetrics& chole = old[0].record.metrics;
+  EXPECT_EQ(old[0].record.procedure, Procedure::kCholecystectomy);
+  EXPECT_EQ(chole.duration_s, 300.5);
+  EXPECT_EQ(chole.springs_cut, 210);
+  EXPECT_TRUE(chole.success);
+  EXPECT_FALSE(chole.calot_step);
+  EXPECT_FALSE(chole.cvs_achieved);
+  EXPECT_EQ(chole.cvs_time_s, 0.0);
+  EXPECT_EQ(chole.bile_duct_injuries, 0);
+  EXPECT_FALSE(chole.calot_passed);
+  EXPECT_EQ(old[1].record.procedure, Procedure::kNeedleBiopsy);
+  EXPECT_EQ(old[1].record.metrics.sample_distance_m, 0.007);
+  EXPECT_EQ(old[1].record.metrics.insertion_attempts, 2);
+  // A session with the Calot step goes in beside them and reads back whole.
+  SessionRecord calot = SampleRecord(4, "old");
+  ASSERT_TRUE(calot.metrics.calot_step);
+  const auto id = store.Add(calot);
+  EXPECT_EQ(store.Get(id)->record, calot);
+  EXPECT_EQ(store.CheckIntegrity(), "ok");
+}
+
+TEST(SqliteSessionStoreTest, ReadOnlyOpenOfVersion3ReadsItsSessionsWithoutTheCalotStep) {
+  TempDir dir;
+  const auto path = dir.path() / "sessions.sqlite";
+  WriteSchemaV3Database(path);
+  const std::string before = ReadBytes(path);
+  {
+    SqliteSessionStore store(path, StoreAccess::kReadOnly);
+    EXPECT_EQ(store.SchemaVersion(), 3);
+    const auto old = store.List("old");
+    ASSERT_EQ(old.size(), 2u);
+    EXPECT_FALSE(old[0].record.metrics.calot_step);
+    EXPECT_EQ(old[0].record.metrics.bleeding_events, 0);
+    EXPECT_EQ(old[0].record.metrics.max_force_N, 4.5);
+  }
+  EXPECT_EQ(ReadBytes(path), before);
 }
 
 TEST(SqliteSessionStoreTest, AProcedureThisBuildDoesNotKnowIsRefusedByTheTable) {
