@@ -30,9 +30,10 @@ SessionStore& Checked(const std::unique_ptr<SessionStore>& store) {
   return *store;
 }
 
-const char* const kColumns[] = {"#",         "Started (UTC)",      "Procedure",     "Scenario",
-                                "Duration",  "Success",            "Slips",         "Path (cm)",
-                                "Liver damage (mm²)", "Max force (N)", "Tissue removed (%)"};
+const char* const kColumns[] = {"#", "Started (UTC)", "Procedure", "Scenario", "Duration", "Success", "Slips",
+                                "Path (cm)", "Liver damage (mm²)", "Max force (N)", "Tissue removed (%)",
+                                // The Calot step (issue 36): "–" for a session without it.
+                                "Critical view", "Bleeds", "Bile duct injuries"};
 constexpr int kColumnCount = static_cast<int>(std::size(kColumns));
 
 QString Text(const std::string& utf8) { return QString::fromStdString(utf8); }
@@ -210,13 +211,17 @@ void HistoryWindow::PlotSessions() {
   // A replay (or the demo) is not the trainee's own hands: listed, never a step of the curve.
   std::vector<SessionMetrics> metrics;
   for (const StoredSession& session : sessions_)
-    if (!session.record.replay && session.record.procedure == metric.procedure) metrics.push_back(session.record.metrics);
+    if (!session.record.replay && session.record.procedure == metric.procedure &&
+        PlotsSession(metric, session.record.metrics))
+      metrics.push_back(session.record.metrics);
   plot_->SetSessions(std::move(metrics));
   plot_->SetMetric(index);
   const QString trainee = CurrentTrainee();
   plot_->SetEmptyText(trainee.isEmpty() ? QStringLiteral("No sessions recorded yet")
-                                        : QStringLiteral("No %1 sessions of %2")
-                                              .arg(QString::fromLatin1(ProcedureTitle(metric.procedure)).toLower(), trainee));
+                      : metric.measured == nullptr
+                          ? QStringLiteral("No %1 sessions of %2")
+                                .arg(QString::fromLatin1(ProcedureTitle(metric.procedure)).toLower(), trainee)
+                          : QStringLiteral("No sessions of %1 with this measure").arg(trainee));
 }
 
 void HistoryWindow::FillTable() {
@@ -242,7 +247,10 @@ void HistoryWindow::FillTable() {
         biopsy ? none : Text(FormatCentimetres(m.path_length_left_m + m.path_length_right_m)),
         biopsy ? none : Text(FormatSquareMillimetres(m.liver_damage_m2)),
         Text(FormatNewtons(m.max_force_N)),
-        biopsy ? none : Text(FormatPercent(m.tissue_removed_fraction))};
+        biopsy ? none : Text(FormatPercent(m.tissue_removed_fraction)),
+        Text(FormatCriticalViewShort(m)),
+        m.calot_step ? QString::number(m.bleeding_events) : none,
+        m.calot_step ? QString::number(m.bile_duct_injuries) : none};
     for (int column = 0; column < kColumnCount; ++column) {
       auto* item = new QTableWidgetItem(cells[column]);
       if (column < 1 || column > 3) item->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);

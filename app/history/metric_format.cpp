@@ -53,9 +53,50 @@ std::string FormatBiopsyOutcome(const SessionMetrics& metrics) {
 std::string FormatOutcome(const SessionMetrics& metrics) {
   if (metrics.success) return "yes (gallbladder free, no perforation)";
   std::string reason;
-  if (!metrics.gallbladder_free) reason = "not free";
-  if (metrics.perforation) reason += reason.empty() ? "perforated" : ", perforated";
+  const auto add = [&](const char* part) { reason += (reason.empty() ? "" : ", ") + std::string(part); };
+  if (!metrics.gallbladder_free) add("not free");
+  if (metrics.perforation) add("perforated");
+  if (metrics.calot_step && metrics.bile_duct_injuries > 0)
+    add("bile duct injury");
+  else if (metrics.calot_step && !metrics.calot_passed)
+    add("Calot step failed");
   return reason.empty() ? "no" : "no (" + reason + ")";
+}
+
+namespace {
+const char* const kNotAssessed = "–";  // UTF-8 en dash: a session without the Calot step
+}  // namespace
+
+std::string FormatCriticalView(const SessionMetrics& m) {
+  if (!m.calot_step) return kNotAssessed;
+  if (!m.cvs_achieved) return "no";
+  return "yes at " + FormatMinutesSeconds(m.cvs_time_s) +
+         (m.cvs_before_first_clip ? ", before the first clip" : ", after the first clip");
+}
+
+std::string FormatCriticalViewShort(const SessionMetrics& m) {
+  if (!m.calot_step) return kNotAssessed;
+  if (!m.cvs_achieved) return "no";
+  return m.cvs_before_first_clip ? "yes" : "late";
+}
+
+std::string FormatClips(int clips, bool placed_correctly) {
+  return std::to_string(clips) + (placed_correctly ? " (placed correctly)" : " (misplaced)");
+}
+
+std::string FormatDivision(const SessionMetrics& m) {
+  if (!m.calot_step) return kNotAssessed;
+  const bool duct = m.cystic_duct_divided_between_clips, artery = m.cystic_artery_divided_between_clips;
+  if (duct && artery) return "both between clips";
+  if (duct) return "artery not between clips";
+  if (artery) return "duct not between clips";
+  return "neither between clips";
+}
+
+std::string FormatCalotOutcome(const SessionMetrics& m) {
+  if (!m.calot_step) return kNotAssessed;
+  if (m.calot_passed) return "passed";
+  return m.bile_duct_injuries > 0 ? "failed (bile duct injury)" : "failed";
 }
 
 }  // namespace vesica::app

@@ -40,7 +40,27 @@ std::string FormatBiopsyOutcome(const SessionMetrics& metrics);
 
 /// "yes" or "no" (from metrics.success) with the reason in brackets:
 /// "yes (gallbladder free, no perforation)", "no (not free)", "no (perforated)",
-/// "no (not free, perforated)".
+/// "no (not free, perforated)"; with the Calot step, its failure too: "no (not free, bile duct
+/// injury)", "no (Calot step failed)".
 std::string FormatOutcome(const SessionMetrics& metrics);
+
+// The Calot's triangle step (metrics.calot_step; each gives "–" for a session without it).
+
+/// The critical view of safety: "yes at 01:05, before the first clip", "yes at 02:10, after the
+/// first clip" or "no".
+std::string FormatCriticalView(const SessionMetrics& metrics);
+
+/// A structure's clips: "3 (placed correctly)" or "1 (misplaced)".
+std::string FormatClips(int clips, bool placed_correctly);
+
+/// Division of the cystic duct and artery: "both between clips", "duct not between clips",
+/// "artery not between clips", "neither between clips" (not divided counts as not between).
+std::string FormatDivision(const SessionMetrics& metrics);
+
+/// The Calot step's outcome: "passed", "failed (bile duct injury)" or "failed".
+std::string FormatCalotOutcome(const SessionMetrics& metrics);
+
+/// The history table's short critical-view cell: "yes", "late" (after the first clip), "no".
+std::string FormatCriticalViewShort(const SessionMetrics& metrics);
 
 }  // namespace vesica::app

@@ -18,6 +18,10 @@ constexpr std::array<const char*, kMetricsPanelLabels.size()> kCaptions{
 constexpr std::array<const char*, kBiopsyPanelLabels.size()> kBiopsyCaptions{
     "Time to sample", "Sample to tumour centre", "Specimen", "No-go crossings", "Insertion attempts"};
 
+constexpr std::array<const char*, kCalotPanelLabels.size()> kCalotCaptions{
+    "Critical view of safety", "Clips, cystic duct", "Clips, cystic artery", "Division",
+    "Bleeding events",         "Bile leaks",         "Bile duct injuries",   "Calot step"};
+
 // Rows of kMetricsPanelLabels a biopsy shows too: time, max force, mean force, success.
 bool SharedRow(std::size_t i) { return i == 0 || i == 7 || i == 8 || i == 11; }
 
@@ -39,13 +43,16 @@ MetricsPanel::MetricsPanel(QWidget* parent) : QWidget(parent) {
     caption_label = new QLabel(QString::fromLatin1(caption) + ":", this);
     form->addRow(caption_label, value_label);
   };
-  for (std::size_t i = 0; i < values_.size(); ++i) add_row(kMetricsPanelLabels[i], kCaptions[i], values_[i], captions_[i]);
+  for (std::size_t i = 0; i < values_.size(); ++i)
+    add_row(kMetricsPanelLabels[i], kCaptions[i], values_[i], captions_[i]);
   for (std::size_t i = 0; i < biopsy_values_.size(); ++i)
     add_row(kBiopsyPanelLabels[i], kBiopsyCaptions[i], biopsy_values_[i], biopsy_captions_[i]);
-  ShowRowsOf(Procedure::kCholecystectomy);
+  for (std::size_t i = 0; i < calot_values_.size(); ++i)
+    add_row(kCalotPanelLabels[i], kCalotCaptions[i], calot_values_[i], calot_captions_[i]);
+  ShowRowsOf(Procedure::kCholecystectomy, false);
 }
 
-void MetricsPanel::ShowRowsOf(Procedure procedure) {
+void MetricsPanel::ShowRowsOf(Procedure procedure, bool calot_step) {
   const bool biopsy = procedure == Procedure::kNeedleBiopsy;
   for (std::size_t i = 0; i < values_.size(); ++i) {
     const bool shown = !biopsy || SharedRow(i);
@@ -56,6 +63,10 @@ void MetricsPanel::ShowRowsOf(Procedure procedure) {
     biopsy_values_[i]->setVisible(biopsy);
     biopsy_captions_[i]->setVisible(biopsy);
   }
+  for (std::size_t i = 0; i < calot_values_.size(); ++i) {
+    calot_values_[i]->setVisible(!biopsy && calot_step);
+    calot_captions_[i]->setVisible(!biopsy && calot_step);
+  }
 }
 
 bool MetricsPanel::RowShown(const QString& object_name) const {
@@ -64,7 +75,7 @@ bool MetricsPanel::RowShown(const QString& object_name) const {
 }
 
 void MetricsPanel::Show(const SessionMetrics& m, Procedure procedure) {
-  ShowRowsOf(procedure);
+  ShowRowsOf(procedure, m.calot_step);
   const std::array<QString, kMetricsPanelLabels.size()> texts{
       QString::fromStdString(FormatMinutesSeconds(m.duration_s)),
       WithUnit(FormatCentimetres(m.path_length_left_m), " cm"),
@@ -86,11 +97,23 @@ void MetricsPanel::Show(const SessionMetrics& m, Procedure procedure) {
       sampled ? QString::fromStdString(FormatSpecimen(m.sample_distance_m)) : QStringLiteral("no sample"),
       QString::number(m.nogo_crossings), QString::number(m.insertion_attempts)};
   for (std::size_t i = 0; i < biopsy_values_.size(); ++i) biopsy_values_[i]->setText(biopsy_texts[i]);
+  const std::array<QString, kCalotPanelLabels.size()> calot_texts{
+      QString::fromStdString(FormatCriticalView(m)),
+      QString::fromStdString(FormatClips(m.cystic_duct_clips, m.cystic_duct_clips_correct)),
+      QString::fromStdString(FormatClips(m.cystic_artery_clips, m.cystic_artery_clips_correct)),
+      QString::fromStdString(FormatDivision(m)),
+      QString::number(m.bleeding_events),
+      QString::number(m.bile_leaks),
+      QString::number(m.bile_duct_injuries),
+      QString::fromStdString(FormatCalotOutcome(m))};
+  for (std::size_t i = 0; i < calot_values_.size(); ++i)
+    calot_values_[i]->setText(m.calot_step ? calot_texts[i] : Placeholder());
 }
 
 void MetricsPanel::Clear() {
   for (QLabel* value : values_) value->setText(Placeholder());
   for (QLabel* value : biopsy_values_) value->setText(Placeholder());
+  for (QLabel* value : calot_values_) value->setText(Placeholder());
 }
 
 QString MetricsPanel::ValueText(const QString& object_name) const {

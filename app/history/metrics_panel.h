@@ -26,11 +26,18 @@ inline constexpr std::array<const char*, 5> kBiopsyPanelLabels{"metric_time_to_s
                                                                "metric_specimen", "metric_nogo_crossings",
                                                                "metric_insertion_attempts"};
 
+/// The objectNames of the rows of the Calot's triangle step (issue 36), shown for a
+/// cholecystectomy with metrics.calot_step and hidden otherwise.
+inline constexpr std::array<const char*, 8> kCalotPanelLabels{
+    "metric_critical_view",   "metric_cystic_duct_clips", "metric_cystic_artery_clips", "metric_division",
+    "metric_bleeding_events", "metric_bile_leaks",        "metric_bile_duct_injuries",  "metric_calot_outcome"};
+
 class MetricsPanel : public QWidget {
  public:
   explicit MetricsPanel(QWidget* parent = nullptr);
 
-  /// Shows these metrics (replacing what was shown), with the rows of that procedure.
+  /// Shows these metrics (replacing what was shown), with the rows of that procedure (and the
+  /// Calot step's when metrics.calot_step).
   void Show(const SessionMetrics& metrics, Procedure procedure = Procedure::kCholecystectomy);
 
   /// Back to the "–" placeholders.
@@ -43,12 +50,14 @@ class MetricsPanel : public QWidget {
   bool RowShown(const QString& object_name) const;
 
  private:
-  void ShowRowsOf(Procedure procedure);
+  void ShowRowsOf(Procedure procedure, bool calot_step);
 
   std::array<QLabel*, kMetricsPanelLabels.size()> values_{};
   std::array<QLabel*, kMetricsPanelLabels.size()> captions_{};
   std::array<QLabel*, kBiopsyPanelLabels.size()> biopsy_values_{};
   std::array<QLabel*, kBiopsyPanelLabels.size()> biopsy_captions_{};
+  std::array<QLabel*, kCalotPanelLabels.size()> calot_values_{};
+  std::array<QLabel*, kCalotPanelLabels.size()> calot_captions_{};
 };
 
 }  // namespace vesica::app

@@ -119,7 +119,7 @@ TEST_F(HistoryWindowTest, TableRowsHoldTheSessionValues) {
   HistoryWindow window(*store_);
   QTableWidget* table = window.Table();
   ASSERT_EQ(table->rowCount(), 3);
-  ASSERT_EQ(table->columnCount(), 11);
+  ASSERT_EQ(table->columnCount(), 14);  // the last three: the Calot step's (calot_history_test.cpp)
   EXPECT_EQ(table->horizontalHeaderItem(1)->text(), "Started (UTC)");
   EXPECT_EQ(table->horizontalHeaderItem(2)->text(), "Procedure");
   EXPECT_EQ(table->horizontalHeaderItem(8)->text(), QString::fromUtf8("Liver damage (mm²)"));
@@ -225,7 +225,8 @@ TEST_F(HistoryWindowTest, ExportCsvToWritesTheTraineesRows) {
       lines[3].startsWith("3,ana,cholecystectomy-default,station-1,2026-11-25T03:20:00Z,"
                           "2026-11-25T03:28:30Z,\"/recordings/ana, third.vrec\",0,0,0,cholecystectomy,480.5,150,125,1,60,"))
       << lines[3].toStdString();
-  EXPECT_TRUE(lines[3].endsWith(",86,86,1,0,1,0,0,0,0,0"));
+  // ... springs, free, perforation, success, the biopsy's five and the Calot step's fourteen (none).
+  EXPECT_TRUE(lines[3].endsWith(",86,86,1,0,1,0,0,0,0,0" + QString(",0").repeated(14)));
 
   ASSERT_TRUE(window.SelectTrainee("ben"));
   ASSERT_TRUE(window.ExportCsvTo(Path("ben.csv")));

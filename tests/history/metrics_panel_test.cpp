@@ -72,8 +72,9 @@ TEST(MetricsPanelTest, EveryLabelNamedAndClearRestoresPlaceholders) {
   panel.Clear();
   for (const char* name : kMetricsPanelLabels) EXPECT_EQ(LabelText(panel, name), QString::fromUtf8("–")) << name;
   for (const char* name : kBiopsyPanelLabels) EXPECT_EQ(LabelText(panel, name), QString::fromUtf8("–")) << name;
+  for (const char* name : kCalotPanelLabels) EXPECT_EQ(LabelText(panel, name), QString::fromUtf8("–")) << name;
   EXPECT_EQ(panel.findChildren<QLabel*>(QRegularExpression("^metric_")).size(),
-            static_cast<int>(kMetricsPanelLabels.size() + kBiopsyPanelLabels.size()));
+            static_cast<int>(kMetricsPanelLabels.size() + kBiopsyPanelLabels.size() + kCalotPanelLabels.size()));
 }
 
 }  // namespace
