@@ -14,6 +14,7 @@ std::string CriticalView(const CalotMetrics& m) {
 
 std::string Clips(const StructureHistory& st) {
   if (IsMainBileDuct(st.kind)) return std::to_string(st.clips.size()) + (st.clips.empty() ? "" : " (bile duct injury)");
+  if (st.clips.empty()) return "none";
   return std::to_string(st.clips.size()) + ": " + std::to_string(st.ClipsOnPatientSide()) + " on the patient's side, " +
          std::to_string(st.ClipsOnGallbladderSide()) + " on the gallbladder's side" +
          (st.ClipsPlacedCorrectly() ? "" : " (2 and 1 needed)");

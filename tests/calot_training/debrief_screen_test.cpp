@@ -9,6 +9,7 @@
 #include <QLabel>
 #include <QPixmap>
 #include <QPushButton>
+#include <cstdlib>
 #include <set>
 
 #include "tests/calot_training/scripted_case.h"
@@ -58,6 +59,10 @@ TEST(DebriefScreenTest, AfterTheCriticalErrorItStatesTheOutcomeTheErrorAndTheMet
   EXPECT_EQ(screen.findChild<QLabel*>("debrief_value_0")->text(), "12.4 s");
   EXPECT_NE(screen.findChild<QPushButton*>("debrief_close"), nullptr);
   EXPECT_GT(DistinctColours(screen), 10);
+  // VESICA_DEBRIEF_PNG=path saves the rendered screen (for the docs).
+  if (const char* png = std::getenv("VESICA_DEBRIEF_PNG")) {
+    EXPECT_TRUE(screen.grab().save(QString::fromLocal8Bit(png)));
+  }
 }
 
 TEST(DebriefScreenTest, APassedCaseSaysSoWithoutReasonsAndAShowReplacesThePrevious) {
