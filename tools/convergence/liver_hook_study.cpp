@@ -1,13 +1,17 @@
 #include "tools/convergence/liver_hook_study.h"
 
+#include <Eigen/Geometry>
+#include <Eigen/QR>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <set>
 #include <vector>
 
 #include "app/mesh_io/mesh_io.h"
 #include "physics/bem/capacitance_solver.h"
+#include "physics/bem/footprint_contact_solver.h"
 #include "physics/bem/graded_surface_refinement.h"
 
 namespace vesica::convergence {
@@ -62,6 +66,7 @@ LiverHookSetup MakeLiverHookSetup(const TriangleMesh& trainer, const ToolLoadRef
   for (int f = 0; f < refined.surface.num_triangles(); ++f) {
     if (!ring_triangles.count(refined.parent_triangle(f))) continue;
     setup.footprint_triangles.push_back(f);
+    setup.footprint_parents.push_back(refined.parent_triangle(f));
     for (int c = 0; c < 3; ++c) {
       const int a = refined.surface.triangles(f, c), b = refined.surface.triangles(f, (c + 1) % 3);
       contact.insert(a);
@@ -69,6 +74,8 @@ LiverHookSetup MakeLiverHookSetup(const TriangleMesh& trainer, const ToolLoadRef
       ++edges;
     }
   }
+  setup.tip = tip;
+  setup.footprint_radius_m = footprint_m;
   setup.surface = std::move(refined.surface);
   setup.contact.assign(contact.begin(), contact.end());
   setup.contact_edge_m = edge_sum / edges;
@@ -78,8 +85,15 @@ LiverHookSetup MakeLiverHookSetup(const TriangleMesh& trainer, const ToolLoadRef
 LiverHookResult SolveLiverHook(const TriangleMesh& trainer, const ToolLoadReference& ref, const LiverHookSetup& setup) {
   const auto start = std::chrono::steady_clock::now();
   const physics::BemModel model = physics::PrecomputeBemModel(setup.surface, physics::LiverMaterial(), "study liver");
+  const double precompute_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  LiverHookResult r = SolveLiverHook(trainer, ref, setup, model);
+  r.precompute_s = precompute_s;
+  return r;
+}
+
+LiverHookResult SolveLiverHook(const TriangleMesh& trainer, const ToolLoadReference& ref, const LiverHookSetup& setup,
+                               const physics::BemModel& model) {
   LiverHookResult r;
-  r.precompute_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   physics::BemCapacitanceSolver solver(model);
   solver.SetContactNodes(setup.contact);
   const physics::Vertices prescribed =
@@ -99,6 +113,61 @@ LiverHookResult SolveLiverHook(const TriangleMesh& trainer, const ToolLoadRefere
                              physics::TriangleArea(setup.surface, f) / 3.0;
   r.footprint_force_error = (r.footprint_force_N - ref.force_N).norm() / ref.force_N.norm();
   const std::set<int> contact(setup.contact.begin(), setup.contact.end());
+  double diff2 = 0, ref2 = 0;
+  for (int v = 0; v < trainer.num_vertices(); ++v) {
+    if (contact.count(v) || (trainer.vertex_labels(v) & physics::kLabelFixed)) continue;
+    diff2 += (solution.displacement_m.row(v) - ref.displacement_m.row(v)).squaredNorm();
+    ref2 += ref.displacement_m.row(v).squaredNorm();
+  }
+  r.displacement_error = std::sqrt(diff2 / ref2);
+  return r;
+}
+
+physics::ToolFootprint OneRingFootprint(const TriangleMesh& trainer, const LiverHookSetup& setup) {
+  physics::ToolFootprint footprint;
+  footprint.triangles = setup.footprint_triangles;
+  footprint.centre_W = trainer.vertices.row(setup.tip).transpose();
+  footprint.radius_m = setup.footprint_radius_m;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  std::map<int, Eigen::Matrix3d> ring;  // refined triangle -> columns tip, a, b of its parent
+  for (std::size_t k = 0; k < setup.footprint_triangles.size(); ++k) {
+    const int parent = setup.footprint_parents[k];
+    int c = 0;
+    while (trainer.triangles(parent, c) != setup.tip) ++c;
+    Eigen::Matrix3d corners;
+    for (int j = 0; j < 3; ++j)
+      corners.col(j) = trainer.vertices.row(trainer.triangles(parent, (c + j) % 3)).transpose();
+    normal += (corners.col(1) - corners.col(0)).cross(corners.col(2) - corners.col(0));
+    ring[setup.footprint_triangles[k]] = corners;
+  }
+  footprint.normal_W = normal.normalized();
+  footprint.rho = [ring = std::move(ring)](int f, const Eigen::Vector3d& p) {
+    const Eigen::Matrix3d& x = ring.at(f);
+    Eigen::Matrix<double, 3, 2> edges;
+    edges << x.col(1) - x.col(0), x.col(2) - x.col(0);
+    const Eigen::Vector2d st = edges.colPivHouseholderQr().solve(p - x.col(0));
+    return st.sum();  // 1 - the tip's barycentric coordinate
+  };
+  return footprint;
+}
+
+LiverHookResult SolveLiverHookWithModes(const TriangleMesh& trainer, const ToolLoadReference& ref,
+                                        const LiverHookSetup& setup, const physics::BemModel& model,
+                                        const physics::FootprintOptions& options) {
+  const physics::FootprintModes modes =
+      physics::MakeFootprintModes(setup.surface, model.lumped_area_m2, OneRingFootprint(trainer, setup), options);
+  physics::BemFootprintSolver solver(model);
+  solver.SetFootprint(modes);
+  LiverHookResult r;
+  r.vertices = setup.surface.num_vertices();
+  r.contact_edge_m = setup.contact_edge_m;
+  r.force_N = solver.ContactForce(ref.prescribed_m);
+  r.force_error = (r.force_N - ref.force_N).norm() / ref.force_N.norm();
+  r.footprint_force_N = r.force_N;
+  r.footprint_force_error = r.force_error;
+  physics::BemSolution solution;
+  solver.Solve(ref.prescribed_m, solution);
+  const std::set<int> contact(ref.contact.begin(), ref.contact.end());
   double diff2 = 0, ref2 = 0;
   for (int v = 0; v < trainer.num_vertices(); ++v) {
     if (contact.count(v) || (trainer.vertex_labels(v) & physics::kLabelFixed)) continue;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "physics/bem/bem_model.h"
+#include "physics/bem/tool_footprint.h"
 #include "physics/mesh/triangle_mesh.h"
 #include "tools/convergence/tool_load_reference.h"
 
@@ -37,6 +38,9 @@ struct LiverHookSetup {
   physics::TriangleMesh surface;
   std::vector<int> contact;              ///< every vertex on the footprint's (refined) triangles
   std::vector<int> footprint_triangles;  ///< the (refined) triangles the tool covers
+  std::vector<int> footprint_parents;    ///< the trainer's ring triangle each of them lies in
+  int tip = -1;                          ///< the hook's tip vertex (same index on every level)
+  double footprint_radius_m = 0;         ///< the tip's longest ring edge
   double contact_edge_m = 0;
 };
 LiverHookSetup MakeLiverHookSetup(const physics::TriangleMesh& trainer_liver, const ToolLoadReference& ref, int levels,
@@ -45,6 +49,19 @@ LiverHookSetup MakeLiverHookSetup(const physics::TriangleMesh& trainer_liver, co
 /// Precomputes the BEM on the setup's surface (no cache) and solves the indentation.
 LiverHookResult SolveLiverHook(const physics::TriangleMesh& trainer_liver, const ToolLoadReference& ref,
                                const LiverHookSetup& setup);
+/// The same on a model already precomputed for the setup's surface (precompute_s left 0).
+LiverHookResult SolveLiverHook(const physics::TriangleMesh& trainer_liver, const ToolLoadReference& ref,
+                               const LiverHookSetup& setup, const physics::BemModel& model);
+
+/// Issue 37's fix: the same load as a traction over the tool's footprint (the tip's one-ring;
+/// rho = 1 - the tip's barycentric coordinate in its ring triangle, so rho = 1 on the ring's outer
+/// edges) carried by traction modes (physics/bem/tool_footprint.h, default: uniform and punch, 6
+/// unknowns) instead of prescribed nodes. The displacement error skips the reference's contact
+/// vertices as SolveLiverHook does.
+physics::ToolFootprint OneRingFootprint(const physics::TriangleMesh& trainer_liver, const LiverHookSetup& setup);
+LiverHookResult SolveLiverHookWithModes(const physics::TriangleMesh& trainer_liver, const ToolLoadReference& ref,
+                                        const LiverHookSetup& setup, const physics::BemModel& model,
+                                        const physics::FootprintOptions& options = {});
 
 /// data/anatomy/liver.vtk and tests/bem/data/liver_hook_reference.txt under the source tree.
 physics::TriangleMesh ReadTrainerLiver(const std::string& source_dir);
