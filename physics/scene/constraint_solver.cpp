@@ -18,6 +18,9 @@ void Check(const ConstraintProblem& p) {
                                 ", gaps " + std::to_string(m) + " entries");
   if (!p.delassus.allFinite() || !p.gap.allFinite() || !p.soft_compliance.allFinite())
     throw std::invalid_argument("SolveConstraints: non-finite W, W_soft or gap");
+  if (p.initial_lambda.size() != 0 && (p.initial_lambda.size() != m || !p.initial_lambda.allFinite()))
+    throw std::invalid_argument("SolveConstraints: initial_lambda has " + std::to_string(p.initial_lambda.size()) +
+                                " entries (not finite, or not one per row: " + std::to_string(m) + ")");
   for (Eigen::Index i = 0; i < m; ++i) {
     if (p.kinds[static_cast<size_t>(i)] == ConstraintKind::kFriction) {
       const size_t k = static_cast<size_t>(i);
@@ -65,10 +68,21 @@ ConstraintSolution SolveConstraints(const ConstraintProblem& p, const Constraint
   ConstraintSolution out;
   out.lambda.setZero(m);
   if (m == 0) return out;
+  if (p.initial_lambda.size() == m) out.lambda = p.initial_lambda;
   Eigen::MatrixXd a = p.delassus;
   a.diagonal() += p.soft_compliance;
   const bool large = settings.fast_large_problems && m > kContiguousRows;
+  const bool by_change = settings.change_tolerance_m > 0.0;
+  auto max_error = [&] {
+    const Eigen::VectorXd residual = a * out.lambda + p.gap;
+    double e = 0.0;
+    for (Eigen::Index i = 0; i < m; ++i)
+      e = std::max(
+          e, RowError(p.kinds[static_cast<size_t>(i)], out.lambda[i], residual[i], FrictionBound(p, out.lambda, i)));
+    return e;
+  };
   for (int sweep = 1; sweep <= settings.max_iterations; ++sweep) {
+    double largest_change_m = 0.0;
     for (Eigen::Index i = 0; i < m; ++i) {
       // Row residual without row i's own contribution, then the row's exact solution, projected.
       // A is symmetric: a large problem reads column i (contiguous) instead of row i (one cache
@@ -83,16 +97,19 @@ ConstraintSolution SolveConstraints(const ConstraintProblem& p, const Constraint
         const double bound = FrictionBound(p, out.lambda, i);
         li = std::clamp(li, -bound, bound);
       }
+      if (by_change) largest_change_m = std::max(largest_change_m, std::abs(li - out.lambda[i]) * a(i, i));
       out.lambda[i] = li;
     }
     out.iterations = sweep;
+    if (by_change) {
+      if (largest_change_m > settings.change_tolerance_m && sweep != settings.max_iterations) continue;
+      out.max_error_m = max_error();
+      if (largest_change_m <= settings.change_tolerance_m || out.max_error_m <= settings.tolerance_m) break;
+      continue;
+    }
     // A large problem checks convergence every 8th sweep and at the last (the check costs a sweep).
     if (large && sweep % 8 != 0 && sweep != settings.max_iterations) continue;
-    const Eigen::VectorXd residual = a * out.lambda + p.gap;
-    out.max_error_m = 0.0;
-    for (Eigen::Index i = 0; i < m; ++i)
-      out.max_error_m = std::max(out.max_error_m, RowError(p.kinds[static_cast<size_t>(i)], out.lambda[i], residual[i],
-                                                           FrictionBound(p, out.lambda, i)));
+    out.max_error_m = max_error();
     if (out.max_error_m <= settings.tolerance_m) break;
   }
   return out;

@@ -25,6 +25,9 @@ struct ConstraintProblem {
   /// whose force bounds this one, and the friction coefficient mu >= 0.
   std::vector<int> normal_row;
   std::vector<double> friction_coefficient;
+  /// Where the sweeps start (N, m entries; empty: zero): a warm start from the last step's forces,
+  /// so a resting contact that barely changes needs a few sweeps instead of tens.
+  Eigen::VectorXd initial_lambda;
 };
 
 struct ConstraintSolverSettings {
@@ -34,6 +37,10 @@ struct ConstraintSolverSettings {
   /// every 8th sweep: much faster for hundreds of rows, but other rounding than the row order,
   /// so it is asked for only where results need not match older runs bit for bit.
   bool fast_large_problems = false;
+  /// > 0: also stop after a sweep in which no row's force moved its own row by more than this
+  /// (|delta lambda_i| (W + W_soft)_ii, metres), a test that costs nothing; max_error_m is then
+  /// computed once, after the last sweep. 0: only the complementarity test above.
+  double change_tolerance_m = 0.0;
 };
 
 struct ConstraintSolution {

@@ -34,6 +34,8 @@ void ValidateDissectionSettings(const DissectionSettings& s) {
           "obstacle_compliance_m_per_N", "must be > 0");
   Require(std::isfinite(s.obstacle_friction) && s.obstacle_friction >= 0, "obstacle_friction", "must be >= 0");
   Require(s.obstacle_max_sweeps >= 1, "obstacle_max_sweeps", "must be >= 1");
+  Require(s.obstacle_tolerance_m > 0.0 && std::isfinite(s.obstacle_tolerance_m), "obstacle_tolerance_m",
+          "must be > 0 and finite");
 }
 
 Eigen::Vector3d DirectionTowardBed(const TriangleMesh& liver, const TetrahedralMesh& gallbladder) {

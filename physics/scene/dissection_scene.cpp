@@ -59,6 +59,7 @@ DissectionScene::DissectionScene(std::shared_ptr<const DissectionModel> model)
   liver_current_ = model_->liver->rest_surface;
   liver_velocity_ = Vertices::Zero(liver_current_.num_vertices(), 3);
   gallbladder_current_ = model_->gallbladder->rest_mesh;
+  obstacle_lambda_.assign(static_cast<size_t>(gallbladder_current_.num_vertices()), {0.0, 0.0, 0.0});
   liver_surface_id_ = caster_.AddSurface(liver_current_);
   gallbladder_surface_id_ = caster_.AddSurface(model_->gallbladder_boundary.surface);
   for (int i = 0; i < 2; ++i)
@@ -155,6 +156,42 @@ Eigen::Matrix3d DissectionScene::BlockCompliance(const Row& a, const Row& b) {
     }
   }
   return c;
+}
+
+// The obstacle rows are grouped by node (a contact row, then its friction rows), each on one
+// gallbladder node with weight 1: rows g and h of nodes p and q couple through the 3x3 block
+// C(p, q) of the rest compliance, so W's obstacle part is D_p^T C(p, q) D_q per pair of nodes
+// (D: the group's row directions), one block lookup and two small products per pair instead of
+// one per pair of rows.
+void DissectionScene::AddObstacleDelassus(const std::vector<Row>& rows, Eigen::Index first,
+                                          ConstraintProblem& problem) {
+  const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
+  struct Group {
+    int node;
+    Eigen::Index first, count;
+    Eigen::Matrix3d directions;  // columns: the rows' directions
+  };
+  std::vector<Group> groups;
+  for (Eigen::Index a = first; a < m; ++a) {
+    const Row& r = rows[static_cast<size_t>(a)];
+    if (groups.empty() || groups.back().node != r.nodes[0])
+      groups.push_back({r.nodes[0], a, 0, Eigen::Matrix3d::Zero()});
+    Group& g = groups.back();
+    g.directions.col(g.count++) = r.direction;
+  }
+  for (size_t h = 0; h < groups.size(); ++h) {
+    const Group& gh = groups[h];
+    const auto& columns = gallbladder_compliance_.NodeColumns(gh.node);
+    for (size_t g = 0; g <= h; ++g) {
+      const Group& gg = groups[g];
+      const Eigen::Matrix3d w = gg.directions.transpose() * columns.block<3, 3>(3 * gg.node, 0) * gh.directions;
+      for (Eigen::Index j = 0; j < gh.count; ++j)
+        for (Eigen::Index i = 0; i < gg.count; ++i) {
+          problem.delassus(gg.first + i, gh.first + j) = w(i, j);
+          problem.delassus(gh.first + j, gg.first + i) = w(i, j);
+        }
+    }
+  }
 }
 
 std::vector<DissectionScene::Row> DissectionScene::ObstacleRows(const Vertices& gb_start, const Vertices& gb_free,
@@ -363,6 +400,7 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
   }
   rows.insert(rows.end(), obstacle_rows.begin(), obstacle_rows.end());
   const Eigen::Index m = static_cast<Eigen::Index>(rows.size());
+  const Eigen::Index first_obstacle = m - static_cast<Eigen::Index>(obstacle_rows.size());
   ConstraintProblem problem;
   problem.delassus.setZero(m, m);
   problem.soft_compliance.resize(m);
@@ -374,6 +412,10 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     problem.kinds.push_back(ra.kind);
     problem.normal_row.push_back(ra.kind == ConstraintKind::kFriction ? static_cast<int>(a) + ra.normal_offset : -1);
     problem.friction_coefficient.push_back(ra.friction);
+  }
+  // The obstacle rows among themselves: AddObstacleDelassus, node by node.
+  for (Eigen::Index a = 0; a < first_obstacle; ++a) {
+    const Row& ra = rows[static_cast<size_t>(a)];
     // An obstacle's contact and friction rows share their node: consecutive rows b on the same
     // points as the one before reuse its block (the same numbers, computed once).
     const Row* block_of = nullptr;
@@ -390,23 +432,41 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
       problem.delassus(b, a) = w;
     }
   }
+  if (first_obstacle < m) AddObstacleDelassus(rows, first_obstacle, problem);
   report.constraint_rows = static_cast<int>(m);
   // With the freed gallbladder's resting rows (hundreds where a flat face lies on an organ) a
   // sweep costs m^2: a capped number of sweeps keeps the step bounded; what one step leaves
   // unresolved of a resting contact shows as a gap the next step's rows close.
   ConstraintSolverSettings solver;
   if (!obstacle_rows.empty()) {
+    // Only after the freeing (earlier steps keep their bits): warm-started from the last step's
+    // obstacle forces, stopped when a sweep changes no row by more than obstacle_tolerance_m.
     solver.max_iterations = s.obstacle_max_sweeps;
-    solver.fast_large_problems = true;  // only after the freeing: earlier steps keep their bits
+    solver.fast_large_problems = true;
+    solver.change_tolerance_m = s.obstacle_tolerance_m;
+    problem.initial_lambda = Eigen::VectorXd::Zero(m);
+    for (Eigen::Index a = first_obstacle; a < m; ++a) {
+      const Row& r = rows[static_cast<size_t>(a)];
+      const int slot = r.kind == ConstraintKind::kFriction ? -r.normal_offset : 0;
+      problem.initial_lambda[a] = obstacle_lambda_[static_cast<size_t>(r.nodes[0])][static_cast<size_t>(slot)];
+    }
   }
   report.constraints = SolveConstraints(problem, solver);
   const Eigen::VectorXd& lambda = report.constraints.lambda;
+  for (int node : obstacle_lambda_nodes_) obstacle_lambda_[static_cast<size_t>(node)] = {0.0, 0.0, 0.0};
+  obstacle_lambda_nodes_.clear();
+  for (Eigen::Index a = first_obstacle; a < m; ++a) {
+    const Row& r = rows[static_cast<size_t>(a)];
+    const int slot = r.kind == ConstraintKind::kFriction ? -r.normal_offset : 0;
+    if (slot == 0) obstacle_lambda_nodes_.push_back(r.nodes[0]);
+    obstacle_lambda_[static_cast<size_t>(r.nodes[0])][static_cast<size_t>(slot)] = lambda[a];
+  }
   lap(report.times.constraints_us);
 
   // 7. Correction: each body moves by C J^T lambda (force -d lambda on the tissue point).
   Eigen::VectorXd du_gb = Eigen::VectorXd::Zero(gb_model.num_dofs());
   Eigen::VectorXd du_liver = Eigen::VectorXd::Zero(3 * liver.num_nodes());
-  for (Eigen::Index a = 0; a < m; ++a) {
+  for (Eigen::Index a = 0; a < first_obstacle; ++a) {
     if (lambda[a] == 0.0) continue;
     const Row& r = rows[static_cast<size_t>(a)];
     const Eigen::Vector3d force = -r.direction * lambda[a];
@@ -422,6 +482,14 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
         du_gb.noalias() += gallbladder_compliance_.NodeColumns(node) * (r.weights[j] * force);
       }
     }
+  }
+  // An obstacle's node takes its contact and friction rows' forces summed: one column block each.
+  for (Eigen::Index a = first_obstacle; a < m;) {
+    const int node = rows[static_cast<size_t>(a)].nodes[0];
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();
+    for (; a < m && rows[static_cast<size_t>(a)].nodes[0] == node; ++a)
+      force -= rows[static_cast<size_t>(a)].direction * lambda[a];
+    if (!force.isZero()) du_gb.noalias() += gallbladder_compliance_.NodeColumns(node) * force;
   }
   if (!du_gb.isZero()) {
     gallbladder_.SetState(gallbladder_.state().displacement_m + du_gb,
@@ -453,7 +521,9 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     }
     if (lambda[a] > 0.0 || r.kind == ConstraintKind::kBilateral) active[static_cast<size_t>(r.instrument)].push_back(a);
   }
-  const Eigen::MatrixXd system = problem.delassus + Eigen::MatrixXd(problem.soft_compliance.asDiagonal());
+  // W + W_soft of the tools' rows (the obstacle rows, hundreds after the freeing, are not needed).
+  const Eigen::MatrixXd system = problem.delassus.topLeftCorner(first_obstacle, first_obstacle) +
+                                 Eigen::MatrixXd(problem.soft_compliance.head(first_obstacle).asDiagonal());
   for (size_t i = 0; i < 2; ++i) {
     HapticContactFrame frame;
     frame.time_s = static_cast<double>(steps_ + 1) * h;
@@ -481,10 +551,14 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     if (hits[i]) {
       // The gap after the correction: the solved rows close it exactly; others keep their own.
       double gap = hit_gap[i];
-      for (Eigen::Index a = 0; a < m; ++a)
+      for (Eigen::Index a = 0; a < first_obstacle; ++a)
         if (rows[static_cast<size_t>(a)].instrument == static_cast<int>(i) &&
             rows[static_cast<size_t>(a)].grasp_point < 0)
-          gap = (system.row(a) * lambda)(0) + problem.gap[a];
+          gap = first_obstacle == m  // no obstacle rows: as the recordings were made, bit for bit
+                    ? (system.row(a) * lambda)(0) + problem.gap[a]
+                    : (system.row(a) * lambda.head(first_obstacle))(0) +
+                          problem.delassus.row(a).tail(m - first_obstacle).dot(lambda.tail(m - first_obstacle)) +
+                          problem.gap[a];
       touch.gap_m = gap;
       if (gap <= s.touch_tolerance_m) {
         touch.surface = hits[i]->surface == liver_surface_id_ ? TouchedSurface::kLiver : TouchedSurface::kGallbladder;

@@ -107,6 +107,8 @@ class DissectionScene {
   // of a static obstacle or of the liver's free surface, each pressed one followed by its two
   // friction rows (which hold it at its position at the step's start).
   std::vector<Row> ObstacleRows(const Vertices& gb_start, const Vertices& gb_free, const Vertices& liver_free) const;
+  // W among rows[first...] (the obstacle rows, grouped by node), both triangles.
+  void AddObstacleDelassus(const std::vector<Row>& rows, Eigen::Index first, ConstraintProblem& problem);
 
   std::shared_ptr<const DissectionModel> model_;
   FemBody gallbladder_;
@@ -123,6 +125,10 @@ class DissectionScene {
   std::array<Eigen::Vector3d, 2> tips_{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::array<HapticContactFrame, 2> frames_;
   std::vector<double> grasp_point_forces_;  // |lambda| per grasped point, last step
+  // The obstacle rows' forces of the last step per gallbladder node (contact, friction 1 and 2),
+  // the next solve's warm start; obstacle_lambda_nodes_: the nodes that had them.
+  std::vector<std::array<double, 3>> obstacle_lambda_;
+  std::vector<int> obstacle_lambda_nodes_;
   bool attachments_changed_ = false;
   int steps_since_compliance_ = 0;
   long compliance_adopt_step_ = -1;  // step at which the compliance begun on a worker is adopted; -1: none

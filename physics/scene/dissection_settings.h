@@ -73,6 +73,9 @@ struct DissectionSettings {
   /// Projected Gauss-Seidel sweeps of a step's constraint solve when it has obstacle rows, >= 1
   /// (without them the solver's default, 200).
   int obstacle_max_sweeps = 30;
+  /// The obstacle solve also stops after a sweep that moved no row by more than this, m, > 0: it
+  /// starts from the last step's forces, so a gallbladder at rest needs a few sweeps.
+  double obstacle_tolerance_m = 1e-7;
 };
 
 }  // namespace vesica::physics
