@@ -1,6 +1,7 @@
 #include "app/calot/calot_metrics.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace vesica::app::calot {
 
@@ -72,7 +73,9 @@ void CalotMetrics::TakeStructures(const CalotSnapshot& snapshot) {
     return;
   }
   const auto changed = [&](const std::string& what) {
-    throw CalotInputError("Calot snapshot at t = " + std::to_string(snapshot.time_s) + " s: " + what +
+    char time_text[48];
+    std::snprintf(time_text, sizeof time_text, "%.3f", snapshot.time_s);
+    throw CalotInputError(std::string("Calot snapshot at t = ") + time_text + " s: " + what +
                           " differs from the first snapshot's (the structures must stay the same, in order)");
   };
   if (snapshot.structures.size() != structures_.size()) changed("the number of structures");

@@ -30,8 +30,8 @@ SessionMetrics Measured(const ScriptedCase& script) {
   return session;
 }
 
-ScriptedCase ClipBeforeView() {
-  ScriptedCase script;
+ScriptedCase ClipBeforeView(testing::Variant variant = testing::Variant::kStandard) {
+  ScriptedCase script(variant);
   script.SetDissection(0.5, 0.2);
   script.Advance(10.0);
   script.Clip(kCysticDuct, 0.3);
@@ -40,16 +40,16 @@ ScriptedCase ClipBeforeView() {
   return script;
 }
 
-ScriptedCase UnclippedArteryCut() {
-  ScriptedCase script;
+ScriptedCase UnclippedArteryCut(testing::Variant variant = testing::Variant::kStandard) {
+  ScriptedCase script(variant);
   script.ReachCriticalView();
-  script.Cut(kCysticArtery, 0.55);
+  script.Cut(kCysticArtery, script.planned_cut_s(kCysticArtery));
   script.Advance(1.0);
   return script;
 }
 
-ScriptedCase BileDuctClipped() {
-  ScriptedCase script;
+ScriptedCase BileDuctClipped(testing::Variant variant = testing::Variant::kStandard) {
+  ScriptedCase script(variant);
   script.ReachCriticalView();
   script.Clip(kCommonBileDuct, 0.4);
   script.Advance(1.0);
@@ -95,32 +95,32 @@ TEST(CalotSessionMetricsTest, EachFailureShowsInItsColumns) {
   EXPECT_FALSE(injury.calot_passed);
 }
 
-TEST(CalotSessionMetricsTest, EachOutcomeIsStoredAndReadBackFromSqliteAndTheCsv) {
+TEST(CalotSessionMetricsTest, EachOutcomeOfEachVariantIsStoredAndReadBackFromSqliteAndTheCsv) {
   vesica::app::testing::TempDir dir("vesica-calot");
   SqliteSessionStore store(dir.path() / "sessions.sqlite");
-  const ScriptedCase scripts[] = {testing::CorrectDissection(testing::Variant::kLowInsertion), ClipBeforeView(),
-                                  UnclippedArteryCut(), BileDuctClipped()};
   std::vector<SessionRecord> records;
-  for (std::size_t i = 0; i < std::size(scripts); ++i) {
-    SessionRecord r;
-    r.trainee_id = "resident-1";
-    r.scenario = "calot-triangle";
-    r.started_unix_s = 1795406400 + 600 * static_cast<std::int64_t>(i);
-    r.ended_unix_s = r.started_unix_s + 120;
-    r.metrics = Measured(scripts[i]);
-    records.push_back(r);
-    store.Add(r);
+  for (const testing::Variant variant : testing::kAllVariants) {
+    const ScriptedCase scripts[] = {testing::CorrectDissection(variant), ClipBeforeView(variant),
+                                    UnclippedArteryCut(variant), BileDuctClipped(variant)};
+    for (const ScriptedCase& script : scripts) {
+      SessionRecord r;
+      r.trainee_id = "resident-1";
+      r.scenario = std::string("calot-") + testing::VariantName(variant);
+      r.started_unix_s = 1795406400 + 600 * static_cast<std::int64_t>(records.size());
+      r.ended_unix_s = r.started_unix_s + 120;
+      r.metrics = Measured(script);
+      records.push_back(r);
+      store.Add(r);
+    }
   }
   const auto stored = store.List("resident-1");
   ASSERT_EQ(stored.size(), records.size());
   for (std::size_t i = 0; i < records.size(); ++i) EXPECT_EQ(stored[i].record, records[i]) << "session " << i;
-  EXPECT_TRUE(stored[0].record.metrics.calot_passed);
-  EXPECT_EQ(stored[3].record.metrics.bile_duct_injuries, 1);
 
   std::ostringstream csv;
   store.ExportCsv("resident-1", csv);
   const auto rows = vesica::app::testing::ReadCsv(csv.str());
-  ASSERT_EQ(rows.size(), 5u);
+  ASSERT_EQ(rows.size(), 1 + records.size());
   const auto column = [&](const std::string& name) {
     const auto it = std::find(rows[0].begin(), rows[0].end(), name);
     EXPECT_NE(it, rows[0].end()) << name;
@@ -128,13 +128,20 @@ TEST(CalotSessionMetricsTest, EachOutcomeIsStoredAndReadBackFromSqliteAndTheCsv)
   };
   const std::size_t passed = column("calot_passed"), injuries = column("bile_duct_injuries"),
                     bleeds = column("bleeding_events"), before = column("cvs_before_first_clip"),
-                    cvs_time = column("cvs_time_s");
-  EXPECT_EQ(rows[1][passed], "1");
-  EXPECT_EQ(rows[1][cvs_time], "60.5");
-  EXPECT_EQ(rows[2][before], "0");
-  EXPECT_EQ(rows[3][bleeds], "1");
-  EXPECT_EQ(rows[4][injuries], "1");
-  for (int row : {2, 3, 4}) EXPECT_EQ(rows[row][passed], "0") << row;
+                    cvs_time = column("cvs_time_s"), step = column("calot_step");
+  // Four sessions a variant, in the scripts' order: passed, clipped early, bled, bile duct injury.
+  for (std::size_t v = 0; v < std::size(testing::kAllVariants); ++v) {
+    const auto& row = [&](std::size_t outcome) -> const std::vector<std::string>& { return rows[1 + 4 * v + outcome]; };
+    for (std::size_t outcome = 0; outcome < 4; ++outcome) EXPECT_EQ(row(outcome)[step], "1");
+    EXPECT_EQ(row(0)[passed], "1") << v;
+    EXPECT_EQ(row(0)[cvs_time], "60.5") << v;
+    EXPECT_EQ(row(1)[before], "0") << v;
+    EXPECT_EQ(row(1)[passed], "0") << v;
+    EXPECT_EQ(row(2)[bleeds], "1") << v;
+    EXPECT_EQ(row(2)[passed], "0") << v;
+    EXPECT_EQ(row(3)[injuries], "1") << v;
+    EXPECT_EQ(row(3)[passed], "0") << v;
+  }
 }
 
 }  // namespace
