@@ -6,6 +6,12 @@
 //                                force_err, displ_err (relative), contact nodes
 //   BM_LiverHookContactForces/L  the haptic query, O(s^2)    (budget 20 us)
 //   BM_LiverHookDeform/L         every node's displacement, O(n s)  (budget 0.1 ms)
+// and the same with the footprint as traction modes (issue 37's fix; uniform + punch, m = 6):
+//   BM_LiverHookModesSetFootprint/L  the modes' loads and compliance, once per contact (footprint)
+//   BM_LiverHookModesContactForce/L  the haptic query, O(m^2)   (budget 20 us)
+//   BM_LiverHookModesDeform/L        every node's displacement, O(n m)  (budget 0.1 ms)
+//   BM_SceneHookContactLoad/R        the scene's row: a disc of R um radius on the trainer's liver
+//                                    (MakeToolContactLoad + its compliance), once per step
 // Run: build/<dir>/bench/bem/liver_convergence_bench (docs/fidelity.md quotes it).
 
 #include <benchmark/benchmark.h>
@@ -14,6 +20,8 @@
 #include <memory>
 
 #include "physics/bem/capacitance_solver.h"
+#include "physics/bem/footprint_contact_solver.h"
+#include "physics/bem/tool_contact_load.h"
 #include "tools/convergence/liver_hook_study.h"
 
 namespace vesica::convergence {
@@ -83,6 +91,60 @@ void BM_LiverHookDeform(benchmark::State& state) {
   state.counters["vertices"] = l.model->num_nodes();
 }
 
+void BM_LiverHookModesSetFootprint(benchmark::State& state) {
+  Level& l = LevelModel(static_cast<int>(state.range(0)));
+  const physics::ToolFootprint footprint = OneRingFootprint(Liver(), l.setup);
+  physics::BemFootprintSolver solver(*l.model);
+  for (auto _ : state) {
+    solver.SetFootprint(physics::MakeFootprintModes(l.setup.surface, l.model->lumped_area_m2, footprint));
+    benchmark::DoNotOptimize(solver.mode_compliance().data());
+  }
+  state.counters["loaded_nodes"] = static_cast<double>(solver.footprint().nodes.size());
+}
+
+void BM_LiverHookModesContactForce(benchmark::State& state) {
+  Level& l = LevelModel(static_cast<int>(state.range(0)));
+  physics::BemFootprintSolver solver(*l.model);
+  solver.SetFootprint(
+      physics::MakeFootprintModes(l.setup.surface, l.model->lumped_area_m2, OneRingFootprint(Liver(), l.setup)));
+  Eigen::Vector3d force;
+  for (auto _ : state) {
+    force = solver.ContactForce(Reference().prescribed_m);
+    benchmark::DoNotOptimize(force.data());
+  }
+  state.counters["modes"] = solver.footprint().num_modes();
+  state.counters["force_err"] = (force - Reference().force_N).norm() / Reference().force_N.norm();
+}
+
+void BM_LiverHookModesDeform(benchmark::State& state) {
+  Level& l = LevelModel(static_cast<int>(state.range(0)));
+  physics::BemFootprintSolver solver(*l.model);
+  solver.SetFootprint(
+      physics::MakeFootprintModes(l.setup.surface, l.model->lumped_area_m2, OneRingFootprint(Liver(), l.setup)));
+  physics::BemSolution solution;
+  for (auto _ : state) {
+    solver.Solve(Reference().prescribed_m, solution);
+    benchmark::DoNotOptimize(solution.displacement_m.data());
+  }
+  state.counters["vertices"] = l.model->num_nodes();
+}
+
+void BM_SceneHookContactLoad(benchmark::State& state) {
+  Level& l = LevelModel(0);
+  const double radius_m = 1e-6 * static_cast<double>(state.range(0));
+  const int triangle = l.setup.footprint_triangles.front();
+  const Eigen::Vector3d weights(0.3, 0.3, 0.4);
+  const Eigen::Vector3d normal = OneRingFootprint(Liver(), l.setup).normal_W;
+  std::size_t nodes = 0;
+  for (auto _ : state) {
+    const physics::BemContactLoad load = physics::MakeToolContactLoad(*l.model, triangle, weights, normal, radius_m);
+    const Eigen::Matrix3d c = physics::ContactLoadCompliance(*l.model, load, load);
+    benchmark::DoNotOptimize(c.data());
+    nodes = load.nodes.size();
+  }
+  state.counters["loaded_nodes"] = static_cast<double>(nodes);
+}
+
 BENCHMARK(BM_LiverHookPrecompute)
     ->Args({0, 0})
     ->Args({1, 0})
@@ -92,6 +154,10 @@ BENCHMARK(BM_LiverHookPrecompute)
     ->Iterations(1);
 BENCHMARK(BM_LiverHookContactForces)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_LiverHookDeform)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LiverHookModesSetFootprint)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LiverHookModesContactForce)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LiverHookModesDeform)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SceneHookContactLoad)->Arg(1500)->Arg(5000)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace vesica::convergence

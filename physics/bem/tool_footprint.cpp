@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <deque>
 #include <map>
 #include <set>
 #include <string>
@@ -45,11 +44,9 @@ ToolFootprint DiscFootprint(const TriangleMesh& surface, int triangle, const Eig
     throw BemError("tool footprint: radius " + std::to_string(radius_m) + " m must be positive and finite");
   if (!p_Centre_W.allFinite() || !(normal_W.norm() > 0)) throw BemError("tool footprint: centre or normal not finite");
   const Eigen::Vector3d n = normal_W.normalized();
-  std::vector<std::vector<int>> vertex_triangles(static_cast<std::size_t>(surface.num_vertices()));
-  for (int f = 0; f < surface.num_triangles(); ++f)
-    for (int c = 0; c < 3; ++c) vertex_triangles[static_cast<std::size_t>(surface.triangles(f, c))].push_back(f);
-  // Walk the surface from the hit triangle: a triangle whose bounding sphere reaches the disc may
-  // hold part of it (the walk never jumps to a facing surface across a thin part).
+  // Triangles whose bounding sphere reaches the disc may hold part of it; of those, only the ones
+  // connected to the hit triangle through shared corners count (the disc never jumps to a facing
+  // surface across a thin part). One pass over the surface, no adjacency kept.
   const auto reaches = [&](int f) {
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     for (int c = 0; c < 3; ++c) centroid += surface.vertices.row(surface.triangles(f, c)).transpose() / 3.0;
@@ -58,16 +55,25 @@ ToolFootprint DiscFootprint(const TriangleMesh& surface, int triangle, const Eig
       bound = std::max(bound, (surface.vertices.row(surface.triangles(f, c)).transpose() - centroid).norm());
     return (centroid - p_Centre_W).norm() - bound <= radius_m;
   };
-  std::set<int> seen{triangle};
-  std::deque<int> queue{triangle};
+  std::vector<int> candidates;
+  for (int f = 0; f < surface.num_triangles(); ++f)
+    if (f != triangle && reaches(f)) candidates.push_back(f);
   ToolFootprint footprint;
-  while (!queue.empty()) {
-    const int f = queue.front();
-    queue.pop_front();
-    footprint.triangles.push_back(f);
-    for (int c = 0; c < 3; ++c)
-      for (int g : vertex_triangles[static_cast<std::size_t>(surface.triangles(f, c))])
-        if (seen.insert(g).second && reaches(g)) queue.push_back(g);
+  footprint.triangles.push_back(triangle);
+  std::set<int> reached_vertices;
+  for (int c = 0; c < 3; ++c) reached_vertices.insert(surface.triangles(triangle, c));
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (int& f : candidates) {
+      if (f < 0) continue;
+      bool touches = false;
+      for (int c = 0; c < 3; ++c) touches = touches || reached_vertices.count(surface.triangles(f, c)) > 0;
+      if (!touches) continue;
+      footprint.triangles.push_back(f);
+      for (int c = 0; c < 3; ++c) reached_vertices.insert(surface.triangles(f, c));
+      f = -1;
+      grew = true;
+    }
   }
   footprint.centre_W = p_Centre_W;
   footprint.normal_W = n;
@@ -153,9 +159,9 @@ FootprintModes MakeFootprintModes(const TriangleMesh& surface, const Eigen::Vect
   modes.shapes = options.shapes;
   const Eigen::Index q = static_cast<Eigen::Index>(loads.size());
   Eigen::MatrixXd all(q, static_cast<Eigen::Index>(num_shapes) + 1);
-  std::map<int, Eigen::Index> local;
+  std::vector<Eigen::Index> local(static_cast<std::size_t>(surface.num_vertices()), -1);
   for (const auto& [node, w] : loads) {
-    local[node] = static_cast<Eigen::Index>(modes.nodes.size());
+    local[static_cast<std::size_t>(node)] = static_cast<Eigen::Index>(modes.nodes.size());
     all.row(static_cast<Eigen::Index>(modes.nodes.size())) = w.transpose();
     modes.nodes.push_back(node);
   }
@@ -188,8 +194,8 @@ FootprintModes MakeFootprintModes(const TriangleMesh& surface, const Eigen::Vect
     std::array<Eigen::Index, 3> idx{-1, -1, -1};
     bool any = false;
     for (int c = 0; c < 3; ++c) {
-      const auto it = local.find(surface.triangles(f, c));
-      if (it != local.end()) idx[static_cast<std::size_t>(c)] = it->second, any = true;
+      idx[static_cast<std::size_t>(c)] = local[static_cast<std::size_t>(surface.triangles(f, c))];
+      any = any || idx[static_cast<std::size_t>(c)] >= 0;
     }
     if (!any) continue;
     const double area = TriangleArea(surface, f);

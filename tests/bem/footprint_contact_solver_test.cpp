@@ -91,7 +91,7 @@ TEST_F(FootprintContactSolverTest, SceneLoadComplianceIsThePunchModeCompliance) 
   const ToolFootprint disc = Disc(0.005);
   FootprintOptions options;
   options.shapes = {FootprintShape::kPunch};
-  options.subdivision_levels = 3;
+  options.subdivision_levels = 2;
   BemFootprintSolver solver(*model_);
   solver.SetFootprint(MakeFootprintModes(*mesh_, model_->lumped_area_m2, disc, options));
   // The same disc through the scene's entry point: the hit triangle and barycentric weights.
