@@ -11,6 +11,7 @@
 
 #include "app/scenario/assistant_retraction_config.h"
 #include "app/scenario/patient_position.h"
+#include "physics/instrument/instrument_tool.h"
 
 namespace vesica::app {
 
@@ -69,7 +70,8 @@ struct LaparoscopeConfig {
   double scope_angle_deg = 30;  ///< angled-scope tip (0 or 30 degrees in practice)
 };
 
-enum class InstrumentKind { kGrasper, kCauteryHook };
+/// grasper, cautery_hook at the start of a case; clip_applier and scissors by exchange.
+using InstrumentKind = physics::InstrumentTool;
 /// What drives an instrument: keyboard/mouse, a recorded session, or a CAN arm (emulated or real).
 enum class InputKind { kKeyboard, kReplay, kEmulatedArm, kCanArm };
 
@@ -77,6 +79,9 @@ struct InstrumentConfig {
   std::string name;
   InstrumentKind kind = InstrumentKind::kGrasper;
   std::string trocar;  ///< name of a Trocar
+  /// Tools this port's instrument is exchanged for during the case, in the order a press of the
+  /// exchange key or the arm's handle button brings them (then back to `kind`). Right hand only.
+  std::vector<InstrumentKind> exchange;
   InputKind input = InputKind::kKeyboard;
   std::filesystem::path replay_file;  ///< when input is replay
   std::string can_interface;          ///< when input is can_arm, e.g. "can0"

@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <charconv>
@@ -155,6 +156,21 @@ class TableReader {
       points.push_back(v);
     }
     return points;
+  }
+
+  /// An array of strings; empty when the key is absent.
+  std::vector<std::string> StringList(std::string_view key) {
+    const toml::node* n = Node(key);
+    if (!n) return {};
+    const toml::array* a = n->as_array();
+    if (!a) Fail(n, key, std::string("must be an array of strings, got ") + TypeName(*n));
+    std::vector<std::string> out;
+    for (std::size_t k = 0; k < a->size(); ++k) {
+      const toml::node& e = (*a)[k];
+      if (!e.is_string()) Fail(n, key, "element " + std::to_string(k) + " must be a string, got " + TypeName(e));
+      out.push_back(*e.value<std::string>());
+    }
+    return out;
   }
 
   /// One of the named choices; the message lists them.
@@ -406,6 +422,17 @@ Scenario ParseScenario(std::string_view text, const fs::path& source_name, const
     if (in.input == InputKind::kCanArm || in.input == InputKind::kEmulatedArm) {
       in.can_interface = t.String("can_interface", std::string(in.input == InputKind::kCanArm ? "can0" : "virtual"));
       in.can_node_id = t.IntegerIn("can_node_id", 1, 127);
+    }
+    for (const std::string& key : t.StringList("exchange")) {
+      const std::optional<InstrumentKind> tool = physics::ParseToolKey(key);
+      if (!tool || !physics::IsRightHandTool(*tool))
+        t.Fail(t.table().get("exchange"), "exchange",
+               "unknown tool '" + key + "' (expected cautery_hook, clip_applier or scissors)");
+      if (in.kind == InstrumentKind::kGrasper)
+        t.Fail(t.table().get("exchange"), "exchange", "the grasper's port keeps the grasper: no exchange");
+      if (*tool == in.kind || std::find(in.exchange.begin(), in.exchange.end(), *tool) != in.exchange.end())
+        t.Fail(t.table().get("exchange"), "exchange", "lists '" + key + "' twice (the instrument's kind counts)");
+      in.exchange.push_back(*tool);
     }
     in.shaft_length_m = t.Positive("shaft_length_m", 0.36);
     in.shaft_radius_m = t.Positive("shaft_radius_m", 0.0025);

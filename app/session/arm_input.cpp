@@ -1,6 +1,7 @@
 #include "app/session/arm_input.h"
 
 #include <Eigen/Geometry>
+#include <utility>
 
 namespace vesica::app {
 
@@ -15,8 +16,12 @@ Eigen::Matrix3d TrocarFrame(const physics::InstrumentMount& mount) {
 }
 
 ArmInput::ArmInput(std::array<device::HapticDevice*, 2> devices, std::array<physics::InstrumentMount, 2> mounts,
-                   device::InputFrame fallback, std::function<void()> servo)
-    : devices_(devices), mounts_(mounts), fallback_(fallback), servo_(std::move(servo)) {
+                   device::InputFrame fallback, std::function<void()> servo, ToolExchange right_port)
+    : devices_(devices),
+      mounts_(mounts),
+      fallback_(fallback),
+      servo_(std::move(servo)),
+      right_port_(std::move(right_port)) {
   for (size_t i = 0; i < 2; ++i) R_WT_[i] = TrocarFrame(mounts_[i]);
 }
 
@@ -37,6 +42,10 @@ device::InputFrame ArmInput::Sample(double time_s) {
     pose.jaw_angle_rad = s.gripper_angle_rad;
     f.instruments[i].pose = pose;
     f.instruments[i].pedal = (s.buttons & 1u) != 0;
+    if (i == device::kRight) {
+      right_port_.OnButton((s.buttons & 2u) != 0);
+      f.right_tool = right_port_.current();
+    }
     fallback_.instruments[i] = f.instruments[i];
   }
   return f;

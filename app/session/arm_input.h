@@ -11,6 +11,7 @@
 
 #include "device/haptic_device.h"
 #include "device/input/instrument_input_source.h"
+#include "app/session/tool_exchange.h"
 #include "physics/scene/dissection_settings.h"
 
 namespace vesica::app {
@@ -34,9 +35,10 @@ class ArmInput final : public device::InstrumentInputSource, public HapticIo {
  public:
   /// devices[i] drives instrument i (0 grasper, 1 hook); a null device leaves that instrument at
   /// `fallback` (e.g. the keyboard's pose). The devices must outlive this object. `servo` (may be
-  /// empty) runs each device bridge's cycle (CanArm::Tick) from the haptic thread.
+  /// empty) runs each device bridge's cycle (CanArm::Tick) from the haptic thread. `right_port`:
+  /// the tools the right arm's handle button cycles through.
   ArmInput(std::array<device::HapticDevice*, 2> devices, std::array<physics::InstrumentMount, 2> mounts,
-           device::InputFrame fallback = {}, std::function<void()> servo = {});
+           device::InputFrame fallback = {}, std::function<void()> servo = {}, ToolExchange right_port = {});
 
   device::InputFrame Sample(double time_s) override;
   void ServoTick() override;
@@ -49,6 +51,7 @@ class ArmInput final : public device::InstrumentInputSource, public HapticIo {
   std::array<Eigen::Matrix3d, 2> R_WT_;
   device::InputFrame fallback_;
   std::function<void()> servo_;
+  ToolExchange right_port_;
 };
 
 }  // namespace vesica::app

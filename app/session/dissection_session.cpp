@@ -68,7 +68,9 @@ SessionStepReport DissectionSession::Step(const device::InputFrame& input) {
   // Cautery by the hook (instrument 1); burn maps follow the deformed surfaces.
   cautery_.mutable_liver_burn().UpdateGeometry(scene_.liver_positions());
   cautery_.mutable_gallbladder_burn().UpdateGeometry(scene_.gallbladder_surface_positions());
-  const bool pedal = input.instruments[1].pedal;
+  // Only the hook burns: with the clip applier or the scissors in the port the pedal does nothing.
+  const bool pedal =
+      input.instruments[1].pedal && input.right_tool == physics::InstrumentTool::kCauteryHook;
   report.cautery = CauteryContactFor(report.physics.touches[1], pedal);
   cautery_.Step(report.cautery);
   cautery_active_ = report.cautery.active();

@@ -7,6 +7,11 @@ void LiveInput::Set(int instrument, const device::InstrumentInput& input) {
   frame_.instruments.at(static_cast<std::size_t>(instrument)) = input;
 }
 
+void LiveInput::SetRightTool(physics::InstrumentTool tool) {
+  std::lock_guard lock(mutex_);
+  frame_.right_tool = tool;
+}
+
 device::InputFrame LiveInput::Sample(double time_s) {
   std::lock_guard lock(mutex_);
   device::InputFrame f = frame_;

@@ -12,6 +12,8 @@ class LiveInput final : public device::InstrumentInputSource {
  public:
   explicit LiveInput(const device::InputFrame& initial = {}) : frame_(initial) {}
   void Set(int instrument, const device::InstrumentInput& input);
+  /// The tool the right hand's port holds from the next sample on.
+  void SetRightTool(physics::InstrumentTool tool);
   device::InputFrame Sample(double time_s) override;
 
  private:

@@ -46,9 +46,10 @@ bool ApplyInstrumentKey(char key, std::vector<physics::InstrumentPose>& poses,
     pedal = !pedal;
     return true;
   }
-  if (k == 'x') {
-    if (poses.empty()) return false;
-    poses[0].jaw_angle_rad = poses[0].jaw_angle_rad > 0 ? 0.0 : step.jaw_open_rad;
+  if (k == 'x' || k == 'b') {  // the grasper's jaw; the right hand's (clip applier, scissors)
+    const std::size_t instrument = k == 'x' ? 0 : 1;
+    if (instrument >= poses.size()) return false;
+    poses[instrument].jaw_angle_rad = poses[instrument].jaw_angle_rad > 0 ? 0.0 : step.jaw_open_rad;
     return true;
   }
   for (const auto& b : kBindings) {
@@ -82,7 +83,7 @@ bool ApplyInstrumentWheel(std::size_t instrument, double notches, std::vector<ph
 
 std::string KeyboardHelp() {
   return "Grasper: A/D yaw, W/S pitch, Q/E in/out, Z/C roll, X jaw, left drag (+wheel)   |   Hook: J/L yaw, I/K "
-         "pitch, U/O in/out, N/, roll, M pedal, right drag (+wheel)";
+         "pitch, U/O in/out, N/, roll, M pedal, B jaw, T exchange tool, right drag (+wheel)";
 }
 
 }  // namespace vesica::app

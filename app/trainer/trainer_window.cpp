@@ -116,6 +116,7 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
   // else the keyboard; Session > Input switches while running.
   model_ = std::move(model);
   poses_ = initial_poses_ = view_->poses();
+  right_port_ = RightPortExchange(scenario_);
   if (!options.records_location.empty())
     saver_ = std::make_unique<SessionSaver>(options.records_location, PendingSessionsPath(options.records_location),
                                             options.saver);
@@ -189,7 +190,8 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
         }
         auto bridge = OpenArms();
         ArmBridge* b = bridge.get();
-        auto arms = std::make_shared<ArmInput>(b->devices(), model_->instruments, initial, [b] { b->Tick(); });
+        auto arms = std::make_shared<ArmInput>(b->devices(), model_->instruments, initial, [b] { b->Tick(); },
+                                               RightPortExchange(scenario_));
         ro.haptic_io = arms;
         input = arms;
         runner_.reset();  // its threads use the old bridge: stop them first
@@ -282,6 +284,7 @@ void TrainerWindow::ResetSession() {
   // the new session samples it.
   poses_ = initial_poses_;
   pedal_ = false;
+  right_port_ = RightPortExchange(scenario_);
   drag_instrument_ = -1;
   if (live_input_) SendManualPoses();
   session_number_ = runner_->Reset();
@@ -470,6 +473,11 @@ bool TrainerWindow::eventFilter(QObject* watched, QEvent* event) {
       case Qt::Key_F2:
         diagnostics_->setVisible(!diagnostics_->isVisible());
         return true;
+      case Qt::Key_T:  // exchange the right hand's tool through its port
+        if (!live_input_) break;
+        right_port_.Next();
+        SendManualPoses();
+        return true;
       case Qt::Key_Plus:
       case Qt::Key_Equal:
         camera->Zoom(1.1);
@@ -555,6 +563,7 @@ void TrainerWindow::SendManualPoses() {
     in.pedal = i == 1 && pedal_;
     live_input_->Set(i, in);
   }
+  live_input_->SetRightTool(right_port_.current());
 }
 
 }  // namespace vesica::app

@@ -16,6 +16,7 @@
 #include "app/render/laparoscope_view.h"
 #include "app/session/live_input.h"
 #include "app/session/session_runner.h"
+#include "app/session/tool_exchange.h"
 #include "app/trainer/session_saver.h"
 
 class QAction;
@@ -142,6 +143,7 @@ class TrainerWindow : public QMainWindow {
   int drag_x_ = 0, drag_y_ = 0;
   std::vector<double> max_insertion_m_;
   bool pedal_ = false;
+  ToolExchange right_port_;  // the keyboard's exchange (T); the arms' handle button has its own
   bool finished_shown_ = false, stored_ = false;
   std::optional<std::int64_t> stored_id_;
   int session_number_ = 0;  // RunnerStatus::session of the session this window shows

@@ -15,6 +15,7 @@ std::optional<std::string> FrameProblem(const InputFrame& frame, const InputFram
     }
     if (p.insertion_m < 0) return std::string(kSide[side]) + "_insertion_m is negative";
   }
+  if (!physics::IsRightHandTool(frame.right_tool)) return "the right port holds the grasper";
   return std::nullopt;
 }
 

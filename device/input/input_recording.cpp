@@ -15,14 +15,15 @@
 namespace vesica::device {
 namespace {
 
-constexpr int kColumns = 13;
+constexpr int kColumnsV1 = 13;
+constexpr int kColumns = 14;  // v2; v1 lacks the last
 constexpr std::string_view kScenarioPrefix = "# scenario: ";
 // A full dissection at 1 kHz is well under 100 MB; anything far beyond is not a recording.
 constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{1} << 30;
 
 constexpr std::array<std::string_view, kColumns> SplitHeader() {
   std::array<std::string_view, kColumns> names{};
-  std::string_view rest = kRecordingHeader;
+  std::string_view rest = kRecordingHeaderV2;
   for (int i = 0; i < kColumns; ++i) {
     const std::size_t comma = rest.find(',');
     names[i] = rest.substr(0, comma);
@@ -130,11 +131,12 @@ class Parser {
   void ReadMagic() {
     const std::optional<Line> line = lines_.Next();
     if (!line) Fail(1, std::nullopt, "empty file, expected " + Quote(kRecordingMagic));
-    if (line->text != kRecordingMagic) {
+    if (line->text == kRecordingMagicV2) columns_ = kColumns;
+    if (line->text != kRecordingMagic && line->text != kRecordingMagicV2) {
       constexpr std::string_view kFamily = "# vesica input recording v";
       if (line->text.substr(0, kFamily.size()) == kFamily) {
         Fail(1, std::nullopt, "unsupported recording version " + Quote(line->text.substr(kFamily.size() - 1)) +
-                                  ", this build reads v1");
+                                  ", this build reads v1 and v2");
       }
       Fail(1, std::nullopt, "not an input recording: line 1 is " + Quote(line->text) + ", expected " +
                                 Quote(kRecordingMagic));
@@ -146,7 +148,7 @@ class Parser {
     bool have_scenario = false;
     for (;;) {
       const std::optional<Line> line = lines_.Next();
-      if (!line) Fail(lines_.number() + 1, std::nullopt, "missing header line " + Quote(kRecordingHeader));
+      if (!line) Fail(lines_.number() + 1, std::nullopt, "missing header line " + Quote(Header()));
       if (line->text.substr(0, 1) == "#") {
         if (line->text.substr(0, kScenarioPrefix.size()) == kScenarioPrefix) {
           if (have_scenario) Fail(line->number, std::nullopt, "second '# scenario:' line");
@@ -167,16 +169,16 @@ class Parser {
     for (int column = 0;; ++column) {
       const std::size_t comma = rest.find(',');
       const std::string_view name = rest.substr(0, comma);
-      if (column >= kColumns) {
+      if (column >= columns_) {
         Fail(line.number, std::nullopt, "header has an extra column " + std::to_string(column + 1) + " " + Quote(name) +
-                                            " after 'right_pedal'");
+                                            " after " + Quote(kColumnNames[columns_ - 1]));
       }
       if (name != kColumnNames[column]) {
         Fail(line.number, std::nullopt, "header column " + std::to_string(column + 1) + " is " + Quote(name) +
                                             ", expected " + Quote(kColumnNames[column]));
       }
       if (comma == std::string_view::npos) {
-        if (column + 1 < kColumns) {
+        if (column + 1 < columns_) {
           Fail(line.number, std::nullopt, "header ends after column " + std::to_string(column + 1) + ", expected " +
                                               Quote(kColumnNames[column + 1]) + " next");
         }
@@ -190,7 +192,8 @@ class Parser {
     const std::size_t count = static_cast<std::size_t>(std::count(line.text.begin(), line.text.end(), ',')) + 1;
     std::array<std::string_view, kColumns> fields{};
     std::string_view rest = line.text;
-    for (std::size_t i = 0; i < std::min<std::size_t>(count, kColumns); ++i) {
+    const auto columns = static_cast<std::size_t>(columns_);
+    for (std::size_t i = 0; i < std::min(count, columns); ++i) {
       const std::size_t comma = rest.find(',');
       fields[i] = rest.substr(0, comma);
       rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
@@ -201,10 +204,9 @@ class Parser {
     const bool time_ok = !ParseFinite(fields[0], frame.time_s).has_value();
     const std::optional<double> at = time_ok ? std::optional<double>(frame.time_s) : last_good_time_s_;
 
-    if (count != kColumns) {
+    if (count != columns) {
       Fail(line.number, at, "row has " + std::to_string(count) + " field" + (count == 1 ? "" : "s") + ", expected " +
-                                std::to_string(kColumns) + (count < kColumns ? " (file truncated?)" : "") +
-                                LastGood());
+                                std::to_string(columns) + (count < columns ? " (file truncated?)" : "") + LastGood());
     }
     RequireTerminated(line, last_good_time_s_);
     if (const auto problem = ParseFinite(fields[0], frame.time_s)) Fail(line.number, at, "time_s " + *problem);
@@ -231,13 +233,24 @@ class Parser {
       }
       frame.instruments[side].pedal = pedal == "1";
     }
+    if (columns_ == kColumns) {
+      const std::string_view key = fields[kColumns - 1];
+      const std::optional<physics::InstrumentTool> tool = physics::ParseToolKey(key);
+      if (!tool || !physics::IsRightHandTool(*tool)) {
+        Fail(line.number, at, "right_tool must be cautery_hook, clip_applier or scissors, found " + Quote(key));
+      }
+      frame.right_tool = *tool;
+    }
     last_good_line_ = line.number;
     last_good_time_s_ = frame.time_s;
     return frame;
   }
 
+  std::string_view Header() const { return columns_ == kColumns ? kRecordingHeaderV2 : kRecordingHeader; }
+
   LineReader lines_;
   const std::string& source_;
+  int columns_ = kColumnsV1;  // set by the magic line
   int last_good_line_ = 0;
   std::optional<double> last_good_time_s_;
 };
@@ -270,11 +283,14 @@ std::string FormatInputRecording(const InputRecording& rec) {
     throw std::invalid_argument("input recording: scenario name contains a line break");
   }
   if (rec.frames.empty()) throw std::invalid_argument("input recording: no frames");
+  const bool exchanged = std::any_of(rec.frames.begin(), rec.frames.end(), [](const InputFrame& f) {
+    return f.right_tool != physics::InstrumentTool::kCauteryHook;
+  });
   std::string out;
   out.reserve(64 + rec.frames.size() * 200);
-  out.append(kRecordingMagic).append("\n");
+  out.append(exchanged ? kRecordingMagicV2 : kRecordingMagic).append("\n");
   if (!rec.scenario_name.empty()) out.append(kScenarioPrefix).append(rec.scenario_name).append("\n");
-  out.append(kRecordingHeader).append("\n");
+  out.append(exchanged ? kRecordingHeaderV2 : kRecordingHeader).append("\n");
   std::array<char, 32> buf{};
   const auto put = [&](double v) { out.append(buf.data(), std::to_chars(buf.data(), buf.data() + buf.size(), v).ptr); };
   for (std::size_t i = 0; i < rec.frames.size(); ++i) {
@@ -290,6 +306,7 @@ std::string FormatInputRecording(const InputRecording& rec) {
       }
       out += in.pedal ? ",1" : ",0";
     }
+    if (exchanged) out.append(",").append(physics::ToolKey(f.right_tool));
     out += '\n';
   }
   return out;

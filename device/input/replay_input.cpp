@@ -60,6 +60,7 @@ InputFrame ReplayInput::Sample(double time_s) {
       p.jaw_angle_rad = Lerp(pa.jaw_angle_rad, pb.jaw_angle_rad, alpha);
       out.instruments[side].pedal = a.instruments[side].pedal;
     }
+    out.right_tool = a.right_tool;  // an exchange takes effect at its frame
   }
   out.time_s = time_s;
   return out;

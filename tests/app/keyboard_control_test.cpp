@@ -22,6 +22,11 @@ TEST(KeyboardControlTest, KeysMoveTheRightInstrumentByOneStep) {
   EXPECT_DOUBLE_EQ(poses[0].jaw_angle_rad, step.jaw_open_rad);
   ASSERT_TRUE(ApplyInstrumentKey('x', poses, max, pedal));
   EXPECT_DOUBLE_EQ(poses[0].jaw_angle_rad, 0.0);
+  ASSERT_TRUE(ApplyInstrumentKey('b', poses, max, pedal));  // the clip applier's or the scissors' jaw
+  EXPECT_DOUBLE_EQ(poses[1].jaw_angle_rad, step.jaw_open_rad);
+  EXPECT_DOUBLE_EQ(poses[0].jaw_angle_rad, 0.0);
+  ASSERT_TRUE(ApplyInstrumentKey('B', poses, max, pedal));
+  EXPECT_DOUBLE_EQ(poses[1].jaw_angle_rad, 0.0);
   ASSERT_TRUE(ApplyInstrumentKey('m', poses, max, pedal));
   EXPECT_TRUE(pedal);
   EXPECT_FALSE(ApplyInstrumentKey('p', poses, max, pedal));

@@ -83,6 +83,7 @@ void ExpectSameRecording(const InputRecording& a, const InputRecording& b) {
   ASSERT_EQ(a.frames.size(), b.frames.size());
   for (std::size_t i = 0; i < a.frames.size(); ++i) {
     ExpectBitIdentical(a.frames[i].time_s, b.frames[i].time_s);
+    EXPECT_EQ(a.frames[i].right_tool, b.frames[i].right_tool);
     for (int s = 0; s < 2; ++s) {
       const InstrumentInput& x = a.frames[i].instruments[s];
       const InstrumentInput& y = b.frames[i].instruments[s];
@@ -212,8 +213,8 @@ TEST(InputRecordingTest, WriterRejectsWhatTheReaderWould) {
 TEST(InputRecordingTest, RejectsAMissingOrWrongMagicLine) {
   ExpectError("", 1, nullptr, "empty file");
   ExpectError(kHeader, 1, nullptr, "not an input recording");
-  ExpectError(std::string("# vesica input recording v2\n") + kHeader, 1, nullptr,
-              "unsupported recording version 'v2'");
+  ExpectError(std::string("# vesica input recording v3\n") + kHeader, 1, nullptr,
+              "unsupported recording version 'v3', this build reads v1 and v2");
   ExpectError("\xef\xbb\xbf# vesica input recording v1\n", 1, nullptr, "'\\xef\\xbb\\xbf# vesica");
 }
 

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <mutex>
 #include <thread>
 
@@ -49,6 +50,10 @@ class FakeArm final : public device::HapticDevice {
     tool_.buttons = pedal ? 1u : 0u;
     joints_.count = 4;
     joints_.position[2] = roll;
+  }
+  void SetButtons(std::uint32_t buttons) {
+    std::lock_guard lock(mutex_);
+    tool_.buttons = buttons;
   }
   Eigen::Vector3d force() const {
     std::lock_guard lock(mutex_);
@@ -121,6 +126,31 @@ TEST(ArmInputTest, MissingArmKeepsTheFallbackPose) {
   Eigen::Vector3d p;
   EXPECT_FALSE(input.ToolPoint(0, p));
   input.SetForce(0, Eigen::Vector3d::Ones());  // nothing to send to: no crash
+}
+
+TEST(ArmInputTest, EachPressOfTheRightHandleButtonExchangesItsTool) {
+  using physics::InstrumentTool;
+  FakeArm left, right;
+  ArmInput input({&left, &right}, {Mount({0, 0, 0}, {0, 0, -1}), Mount({0, 0, 0}, {0, 1, 0})}, {}, {},
+                 ToolExchange({InstrumentTool::kCauteryHook, InstrumentTool::kClipApplier, InstrumentTool::kScissors}));
+  right.Set(Eigen::Vector3d(0, 0, 0.05), 0, false, 0);
+  EXPECT_EQ(input.Sample(0).right_tool, InstrumentTool::kCauteryHook);
+  right.SetButtons(2u);  // pressed and held for three samples: one exchange
+  for (int i = 1; i <= 3; ++i) EXPECT_EQ(input.Sample(0.001 * i).right_tool, InstrumentTool::kClipApplier);
+  right.SetButtons(0u);
+  EXPECT_EQ(input.Sample(0.004).right_tool, InstrumentTool::kClipApplier);
+  right.SetButtons(3u);  // pedal and handle: the pedal still reads, the tool moves on
+  const device::InputFrame f = input.Sample(0.005);
+  EXPECT_EQ(f.right_tool, InstrumentTool::kScissors);
+  EXPECT_TRUE(f.instruments[1].pedal);
+  right.SetButtons(0u);
+  input.Sample(0.006);
+  right.SetButtons(2u);
+  EXPECT_EQ(input.Sample(0.007).right_tool, InstrumentTool::kCauteryHook);  // round again
+  right.SetButtons(0u);
+  left.SetButtons(2u);  // the grasper's handle button exchanges nothing
+  EXPECT_EQ(input.Sample(0.008).right_tool, InstrumentTool::kCauteryHook);
+  EXPECT_FALSE(device::FrameProblem(input.Sample(0.009), nullptr).has_value());
 }
 
 TEST(ArmInputTest, HookArmPushedIntoAnOrganFeelsItPushBack) {

@@ -10,6 +10,7 @@
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario_loader.h"
 #include "app/session/dissection_setup.h"
+#include "device/input/input_recording.h"
 
 namespace vesica::app {
 namespace {
@@ -48,6 +49,33 @@ TEST(DissectionSessionTest, NegativeOrNonFiniteInsertionIsStillRefused) {
   frame.instruments[1].pose.insertion_m = std::numeric_limits<double>::infinity();
   EXPECT_THROW(session.Step(frame), std::invalid_argument);
   EXPECT_EQ(session.metrics().duration_s, 0.0);
+}
+
+// The committed dissection burns with the hook; the same hands with the scissors (or the clip
+// applier) in the right port press the same pedal and burn nothing.
+TEST(DissectionSessionTest, OnlyTheHookBurnsWhenThePedalIsPressed) {
+  const Scenario scenario = LoadScenario(DefaultScenarioPath());
+  const auto model = BuildDissectionModelFor(scenario, LoadSceneMeshes(scenario));
+  const device::InputRecording rec = device::ReadInputRecording(DefaultScenarioPath().parent_path().parent_path() /
+                                                                "recordings" / "dissection.csv");
+  DissectionSession hook(model, DefaultCauteryParams());
+  std::size_t frames = 0;
+  for (; frames < rec.frames.size() && hook.metrics().springs_cut == 0; ++frames) hook.Step(rec.frames[frames]);
+  ASSERT_GT(hook.metrics().springs_cut, 0) << "the committed dissection cuts a spring";
+  ASSERT_GT(hook.metrics().cautery_on_s, 0.0);
+  for (physics::InstrumentTool tool : {physics::InstrumentTool::kScissors, physics::InstrumentTool::kClipApplier}) {
+    DissectionSession other(model, DefaultCauteryParams());
+    for (std::size_t i = 0; i < frames; ++i) {
+      device::InputFrame f = rec.frames[i];
+      f.right_tool = tool;
+      other.Step(f);
+    }
+    const SessionMetrics m = other.metrics();
+    EXPECT_EQ(m.springs_cut, 0) << physics::ToolKey(tool);
+    EXPECT_EQ(m.cautery_on_s, 0.0) << physics::ToolKey(tool);
+    EXPECT_EQ(m.liver_damage_m2 + m.gallbladder_damage_m2, 0.0) << physics::ToolKey(tool);
+    EXPECT_EQ(other.cautery().membrane().spring_cuts().size(), 0u) << physics::ToolKey(tool);
+  }
 }
 
 }  // namespace
