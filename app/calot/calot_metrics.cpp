@@ -28,8 +28,9 @@ CalotMetrics::CalotMetrics(const CvsThresholds& thresholds) : thresholds_(thresh
 }
 
 bool CalotMetrics::CriticalViewBeforeFirstClip() const {
-  if (!critical_view_time_s_) return false;
-  return !first_clip_time_s_ || *critical_view_time_s_ <= *first_clip_time_s_;
+  // Not by comparing times: a clip in the step that completes the view has the view's time but
+  // came before it.
+  return critical_view_time_s_.has_value() && !first_clip_before_view_;
 }
 
 int CalotMetrics::Count(FindingKind kind) const {
@@ -96,7 +97,10 @@ void CalotMetrics::ApplyEvent(const CalotEvent& event) {
   };
   if (event.kind == CalotEventKind::kClip) {
     st.clips.push_back({.s = event.s, .time_s = event.time_s});
-    if (!first_clip_time_s_) first_clip_time_s_ = event.time_s;
+    if (!first_clip_time_s_) {
+      first_clip_time_s_ = event.time_s;
+      first_clip_before_view_ = before_view;
+    }
   } else {
     StructureCut cut{.s = event.s, .time_s = event.time_s};
     for (const PlacedClip& clip : st.clips) {

@@ -117,6 +117,7 @@ class CalotMetrics {
   CvsAssessment latest_{};
   std::optional<double> critical_view_time_s_;
   std::optional<double> first_clip_time_s_;
+  bool first_clip_before_view_ = false;
   std::vector<StructureHistory> structures_;
   std::vector<Finding> findings_;
   // Per structure, for bleeding and for bile: what the model reported in the latest snapshot, and

@@ -111,6 +111,7 @@ TEST(CalotMetricsTest, AClipInTheStepThatCompletesTheViewCameBeforeIt) {
   const CalotMetrics m = Observed(script);
   EXPECT_DOUBLE_EQ(*m.CriticalViewTime(), 5.0);
   EXPECT_DOUBLE_EQ(*m.FirstClipTime(), 5.0);
+  EXPECT_FALSE(m.CriticalViewBeforeFirstClip());  // the same time, but the clip came first
   ASSERT_EQ(m.Findings().size(), 1u);
   EXPECT_EQ(m.Findings()[0].kind, FindingKind::kClipBeforeCriticalView);
   EXPECT_TRUE(m.Findings()[0].before_critical_view);
