@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "physics/bem/tool_contact_load.h"
 #include "physics/mesh/barycentric.h"
 #include "physics/scene/static_obstacles.h"
 #include "physics/tissue/spring_forces.h"
@@ -30,6 +31,7 @@ struct DissectionScene::Row {
   int grasp_point = -1;   // index in grasp_.points(), or -1 for a contact row
   int normal_offset = 0;  // kFriction: its normal row is this many rows before it (< 0)
   double friction = 0;    // kFriction: Coulomb coefficient
+  std::shared_ptr<const BemContactLoad> liver_load;  // a tool on the liver: its footprint (else the point)
 };
 
 namespace {
@@ -136,6 +138,8 @@ double DissectionScene::Energy() const {
 Eigen::Matrix3d DissectionScene::BlockCompliance(const Row& a, const Row& b) {
   Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
   if (a.liver != b.liver) return c;
+  if (a.liver && a.liver_load && b.liver_load)
+    return ContactLoadCompliance(*model_->liver, *a.liver_load, *b.liver_load);
   for (int j = 0; j < 3; ++j) {
     if (b.weights[j] == 0.0) continue;
     if (a.liver) {
@@ -391,6 +395,12 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
   for (size_t i = 0; i < 2; ++i) {
     if (!hits[i] || (i == 0 && holding)) continue;
     Row r = tissue_row(hits[i]->surface == liver_surface_id_, hits[i]->triangle, hits[i]->weights);
+    const double footprint_m = model_->instruments[i].role == InstrumentRole::kGrasper
+                                   ? s.grasper_liver_footprint_radius_m
+                                   : s.hook_liver_footprint_radius_m;
+    if (r.liver && footprint_m > 0)
+      r.liver_load = std::make_shared<const BemContactLoad>(
+          MakeToolContactLoad(liver, hits[i]->triangle, hits[i]->weights, hits[i]->normal, footprint_m));
     r.direction = hits[i]->normal;
     r.gap = std::max(hit_gap[i], -s.max_correction_per_step_m);
     r.kind = ConstraintKind::kUnilateral;
@@ -470,6 +480,10 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     if (lambda[a] == 0.0) continue;
     const Row& r = rows[static_cast<size_t>(a)];
     const Eigen::Vector3d force = -r.direction * lambda[a];
+    if (r.liver_load) {
+      AddContactLoadResponse(liver, *r.liver_load, force, du_liver);
+      continue;
+    }
     for (int j = 0; j < 3; ++j) {
       const int node = r.nodes[static_cast<size_t>(j)];
       if (r.weights[j] == 0.0) continue;

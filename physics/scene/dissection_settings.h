@@ -43,6 +43,11 @@ struct DissectionSettings {
   double grasp_reach_m = 0.003;       ///< closing jaws within this gap of the gallbladder take hold, >= 0
   double membrane_touch_radius_m = 0.003;  ///< hook tip radius that burns membrane elements, > 0
   double hook_length_m = 0.004;            ///< hook from the shaft tip, for the renderer and touch, > 0
+  /// A tool pushing the liver loads it over its tip's footprint, a disc of this radius (m), as a
+  /// rigid punch's traction (physics/bem/tool_contact_load.h; issue 37: the hit triangle's three
+  /// vertices made the liver 40 % too stiff under a tool); 0: a point force on those vertices.
+  double grasper_liver_footprint_radius_m = 0.004;  ///< closed jaws, about 5 x 10 mm, >= 0
+  double hook_liver_footprint_radius_m = 0.0015;    ///< the hook's tip, about 3 mm across, >= 0
   int compliance_refresh_steps =
       20;  ///< refactor the constraint compliance at most this often after springs are cut, >= 1
   /// The refactorisation runs on a worker thread and is adopted this many steps after it began

@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "physics/bem/tool_contact_load.h"
 #include "physics/scene/haptic_force_renderer.h"
 #include "physics/tissue/spring_forces.h"
 #include "tests/scene/synthetic_dissection.h"
@@ -124,16 +125,19 @@ TEST_F(DissectionSceneTest, PushingTheLiverDeformsItAsTheBemSolutionForTheContac
   const Eigen::Vector3d f = r.tool_force_N[1];
   EXPECT_LT(f.y(), 0.0);
   // Independent check: the liver's shape is the capacitance solve for the contact force spread
-  // on the touched triangle's free corners.
+  // over the hook's footprint (a rigid punch's traction on a disc around the touch point, issue
+  // 37), the force being along the surface's normal there.
   const BemModel& liver = *model_->liver;
+  const BemContactLoad load = MakeToolContactLoad(liver, r.touches[1].triangle, r.touches[1].weights,
+                                                  f.normalized(), model_->settings.hook_liver_footprint_radius_m);
   std::vector<int> nodes;
   std::vector<Eigen::Vector3d> tractions;
-  for (int j = 0; j < 3; ++j) {
-    const int v = liver.rest_surface.triangles(r.touches[1].triangle, j);
-    if (liver.layout.free_index(v) < 0) continue;
-    nodes.push_back(v);
-    tractions.push_back(-f * r.touches[1].weights[j] / liver.lumped_area_m2(v));
+  for (size_t j = 0; j < load.nodes.size(); ++j) {
+    if (liver.layout.free_index(load.nodes[j]) < 0) continue;
+    nodes.push_back(load.nodes[j]);
+    tractions.push_back(-f * load.traction_per_N(static_cast<Eigen::Index>(j)));
   }
+  EXPECT_GE(nodes.size(), 3u);
   Vertices t(static_cast<Eigen::Index>(nodes.size()), 3);
   for (size_t k = 0; k < nodes.size(); ++k) t.row(static_cast<Eigen::Index>(k)) = tractions[k].transpose();
   BemCapacitanceSolver solver(liver);
@@ -143,7 +147,7 @@ TEST_F(DissectionSceneTest, PushingTheLiverDeformsItAsTheBemSolutionForTheContac
   const Vertices u = scene.liver_positions() - liver.rest_surface.vertices;
   EXPECT_LT((u - reference.displacement_m).cwiseAbs().maxCoeff(),
             1e-9 * reference.displacement_m.cwiseAbs().maxCoeff());
-  // 1 mm of indentation of a 170 kPa liver under a point load: tenths of a newton.
+  // 1 mm of indentation of a 170 kPa liver under a 3 mm tip: tenths of a newton.
   EXPECT_GT(f.norm(), 0.05);
   EXPECT_LT(f.norm(), 5.0);
 }
