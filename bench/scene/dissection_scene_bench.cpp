@@ -24,7 +24,8 @@
 //     frame every 5th tick (200 Hz physics), Force every tick.
 //   BM_RenderContactForce: RenderContactForce on a unilateral (hook) frame.
 //   BM_FreedGallbladderResting/<contact 0|1>: the freed box falling freely (0) or lying on an
-//     ellipsoid (1), issue 30's static obstacles; counters: rows, pressed nodes, two stage times.
+//     ellipsoid (1), issue 30's static obstacles; counters: rows, pressed nodes, two stage times,
+//     Gauss-Seidel sweeps of the constraint solve.
 // Models (BEM pre-process: seconds) and warmed-up scenes are built once per size, outside the
 // timed loops; the liver's Green's functions are cached in $TMPDIR across runs.
 
@@ -249,10 +250,11 @@ void BM_FreedGallbladderResting(benchmark::State& state) {
   for (size_t k = 0; k < scene.tissue().springs.size(); ++k) scene.CutSpring(static_cast<int>(k));
   const std::array<InstrumentPose, 2> away{};
   for (int k = 0; k < 200; ++k) scene.Step(away);
-  double rows = 0, contacts = 0, collision = 0, constraints = 0;
+  double rows = 0, contacts = 0, collision = 0, constraints = 0, sweeps = 0;
   for (auto _ : state) {
     const DissectionStepReport r = scene.Step(away);
     rows += r.constraint_rows;
+    sweeps += r.constraints.iterations;
     contacts += r.obstacle_contacts;
     collision += r.times.collision_us;
     constraints += r.times.constraints_us;
@@ -262,6 +264,7 @@ void BM_FreedGallbladderResting(benchmark::State& state) {
   state.counters["pressed"] = mean(contacts);
   state.counters["collision_us"] = mean(collision);
   state.counters["constraints_us"] = mean(constraints);
+  state.counters["sweeps"] = mean(sweeps);
 }
 BENCHMARK(BM_FreedGallbladderResting)->Arg(0)->Arg(1)->Iterations(400)->Unit(benchmark::kMicrosecond);
 

@@ -69,12 +69,21 @@ ConstraintSolution SolveConstraints(const ConstraintProblem& p, const Constraint
   out.lambda.setZero(m);
   if (m == 0) return out;
   if (p.initial_lambda.size() == m) out.lambda = p.initial_lambda;
-  Eigen::MatrixXd a = p.delassus;
-  a.diagonal() += p.soft_compliance;
   const bool large = settings.fast_large_problems && m > kContiguousRows;
+  // A = W + W_soft; a large problem reads W itself and adds W_soft's diagonal as it goes (no copy
+  // of hundreds of rows squared each step).
+  Eigen::MatrixXd copy;
+  if (!large) {
+    copy = p.delassus;
+    copy.diagonal() += p.soft_compliance;
+  }
+  const Eigen::MatrixXd& a = large ? p.delassus : copy;
+  const Eigen::VectorXd diagonal =
+      large ? Eigen::VectorXd(p.delassus.diagonal() + p.soft_compliance) : Eigen::VectorXd(copy.diagonal());
   const bool by_change = settings.change_tolerance_m > 0.0;
   auto max_error = [&] {
-    const Eigen::VectorXd residual = a * out.lambda + p.gap;
+    Eigen::VectorXd residual = a * out.lambda + p.gap;
+    if (large) residual += p.soft_compliance.cwiseProduct(out.lambda);
     double e = 0.0;
     for (Eigen::Index i = 0; i < m; ++i)
       e = std::max(
@@ -88,16 +97,17 @@ ConstraintSolution SolveConstraints(const ConstraintProblem& p, const Constraint
       // A is symmetric: a large problem reads column i (contiguous) instead of row i (one cache
       // line per entry: 1 ms a sweep at m = 445, the freed gallbladder lying flat on an organ).
       // Asked for only after the freeing (ConstraintSolverSettings::fast_large_problems).
-      const double row_dot = large ? a.col(i).dot(out.lambda) : a.row(i).dot(out.lambda);
-      const double others = row_dot - a(i, i) * out.lambda[i] + p.gap[i];
-      double li = -others / a(i, i);
+      const double row_dot =
+          large ? a.col(i).dot(out.lambda) + p.soft_compliance[i] * out.lambda[i] : a.row(i).dot(out.lambda);
+      const double others = row_dot - diagonal[i] * out.lambda[i] + p.gap[i];
+      double li = -others / diagonal[i];
       const ConstraintKind kind = p.kinds[static_cast<size_t>(i)];
       if (kind == ConstraintKind::kUnilateral) li = std::max(0.0, li);
       if (kind == ConstraintKind::kFriction) {
         const double bound = FrictionBound(p, out.lambda, i);
         li = std::clamp(li, -bound, bound);
       }
-      if (by_change) largest_change_m = std::max(largest_change_m, std::abs(li - out.lambda[i]) * a(i, i));
+      if (by_change) largest_change_m = std::max(largest_change_m, std::abs(li - out.lambda[i]) * diagonal[i]);
       out.lambda[i] = li;
     }
     out.iterations = sweep;

@@ -183,17 +183,16 @@ void DissectionScene::AddObstacleDelassus(const std::vector<Row>& rows, Eigen::I
     Group& g = groups.back();
     g.directions.col(g.count++) = r.direction;
   }
-  for (size_t h = 0; h < groups.size(); ++h) {
-    const Group& gh = groups[h];
+  // Column by column (W is column-major: the writes stay contiguous); each pair of nodes is
+  // computed from both sides, so W is symmetric to rounding only, as C's columns are.
+  for (const Group& gh : groups) {
     const auto& columns = gallbladder_compliance_.NodeColumns(gh.node);
-    for (size_t g = 0; g <= h; ++g) {
-      const Group& gg = groups[g];
-      const Eigen::Matrix3d w = gg.directions.transpose() * columns.block<3, 3>(3 * gg.node, 0) * gh.directions;
+    for (const Group& gg : groups) {
+      const Eigen::Matrix3d c = columns.block<3, 3>(3 * gg.node, 0);
+      const Eigen::Matrix3d cd = c * gh.directions;
+      const Eigen::Matrix3d w = gg.directions.transpose() * cd;
       for (Eigen::Index j = 0; j < gh.count; ++j)
-        for (Eigen::Index i = 0; i < gg.count; ++i) {
-          problem.delassus(gg.first + i, gh.first + j) = w(i, j);
-          problem.delassus(gh.first + j, gg.first + i) = w(i, j);
-        }
+        for (Eigen::Index i = 0; i < gg.count; ++i) problem.delassus(gg.first + i, gh.first + j) = w(i, j);
     }
   }
 }
