@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/scenario/assistant_retraction_config.h"
+#include "app/scenario/calot_triangle_config.h"
 #include "app/scenario/patient_position.h"
 #include "physics/instrument/instrument_tool.h"
 
@@ -124,6 +125,7 @@ struct Scenario {
   std::vector<ContextOrgan> context_organs;                       ///< optional [[context_organs]]
   PatientPosition patient;                                        ///< optional [patient]: gravity on the gallbladder
   std::optional<AssistantRetractionConfig> assistant_retraction;  ///< optional [assistant_retraction]
+  std::optional<CalotTriangleConfig> calot_triangle;              ///< optional [calot_triangle]: the Calot step
 
   const Trocar& trocar(const std::string& name) const;
 };

@@ -268,6 +268,53 @@ Material ReadMaterial(TableReader& t) {
   return m;
 }
 
+// [calot_triangle]: the variant's name, the neck, and its [[calot_triangle.tubes]].
+CalotTriangleConfig ReadCalotTriangle(TableReader t, const std::string& file) {
+  using physics::calot::TubeEndHold;
+  using physics::calot::TubeKind;
+  CalotTriangleConfig c;
+  c.variant = t.String("variant");
+  c.neck_m = t.Vector3("neck_m");
+  c.node_spacing_m = t.NumberIn("node_spacing_m", 0.0005, 0.02, 0.0025);
+  int cystic_ducts = 0, common_bile_ducts = 0;
+  for (auto& tube : t.Tables("tubes")) {
+    CalotTubeConfig u;
+    u.name = tube.String("name");
+    u.source = file + ":" + std::to_string(tube.table().source().begin.line);
+    u.kind = tube.Choice<TubeKind>("kind", {{"cystic_duct", TubeKind::kCysticDuct},
+                                            {"cystic_artery", TubeKind::kCysticArtery},
+                                            {"common_hepatic_duct", TubeKind::kCommonHepaticDuct},
+                                            {"common_bile_duct", TubeKind::kCommonBileDuct}});
+    const bool cystic = u.kind == TubeKind::kCysticDuct || u.kind == TubeKind::kCysticArtery;
+    u.points_m = tube.Vector3List("points_m", 2);
+    u.end = tube.Choice<TubeEndHold>(
+        "end", {{"neck", TubeEndHold::kNeck}, {"clamped", TubeEndHold::kClamped}, {"free", TubeEndHold::kFree}},
+        cystic ? TubeEndHold::kNeck : TubeEndHold::kClamped);
+    if (u.end == TubeEndHold::kNeck && (u.points_m.back() - c.neck_m).norm() > 0.01)
+      tube.Fail(tube.table().get("points_m"), "points_m",
+                "its last point is " + Shortest((u.points_m.back() - c.neck_m).norm() * 1000) +
+                    " mm from neck_m; a tube held at the neck must end within 10 mm of it");
+    u.planned_cut_s = tube.NumberIn("planned_cut_s", 0.0, 1.0, 0.6);
+    if (tube.Has("outer_radius_m")) u.outer_radius_m = tube.NumberIn("outer_radius_m", 0.0002, 0.01);
+    tube.RejectUnknownKeys();
+    cystic_ducts += u.kind == TubeKind::kCysticDuct;
+    common_bile_ducts += u.kind == TubeKind::kCommonBileDuct;
+    c.tubes.push_back(std::move(u));
+  }
+  // Every variant has a cystic duct and a common bile duct: the step is to tell them apart.
+  if (cystic_ducts != 1 || common_bile_ducts != 1)
+    t.Fail(t.table().get("tubes"), "tubes",
+           "needs exactly one cystic_duct and one common_bile_duct, got " + std::to_string(cystic_ducts) + " and " +
+               std::to_string(common_bile_ducts));
+  t.RejectUnknownKeys();
+  try {
+    physics::calot::ValidateTriangleDescription(ToPhysics(c));
+  } catch (const std::invalid_argument& e) {
+    t.Fail(nullptr, "tubes", e.what());
+  }
+  return c;
+}
+
 }  // namespace
 
 const Trocar& Scenario::trocar(const std::string& trocar_name) const {
@@ -382,6 +429,7 @@ Scenario ParseScenario(std::string_view text, const fs::path& source_name, const
       t.RejectUnknownKeys();
       s.context_organs.push_back(std::move(organ));
     }
+  if (top.Has("calot_triangle")) s.calot_triangle = ReadCalotTriangle(top.Table("calot_triangle"), file);
   if (top.Has("patient")) {
     auto t = top.Table("patient");
     s.patient.given = true;

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -331,6 +333,94 @@ TEST_F(ScenarioFieldTest, BadScopeInsertionAndContextOrgansAreNamed) {
                      "rgb = [1, 2, 1]\n")
                 .find("rgb: each component must be in [0, 1]"),
             std::string::npos);
+}
+
+}  // namespace
+}  // namespace vesica::app
+
+namespace vesica::app {
+namespace {
+
+// Calot's triangle as data (issue 36): the variant's tubes, their holds and planned cuts.
+class CalotTriangleScenarioTest : public ScenarioLoaderTest {
+ protected:
+  static std::string Triangle(const std::string& extra_duct_keys = "") {
+    return std::string(R"(
+[calot_triangle]
+variant = "short cystic duct"
+neck_m = [-0.017, -0.017, 0.048]
+
+[[calot_triangle.tubes]]
+name = "cystic duct"
+kind = "cystic_duct"
+points_m = [[-0.003, -0.063, 0.027], [-0.013, -0.041, 0.037], [-0.017, -0.017, 0.048]]
+planned_cut_s = 0.55
+)") + extra_duct_keys + R"(
+[[calot_triangle.tubes]]
+name = "cystic artery"
+kind = "cystic_artery"
+points_m = [[0.017, -0.037, 0.053], [-0.020, -0.015, 0.045]]
+outer_radius_m = 0.0008
+
+[[calot_triangle.tubes]]
+name = "common bile duct"
+kind = "common_bile_duct"
+points_m = [[-0.003, -0.063, 0.027], [-0.009, -0.098, -0.007]]
+)";
+  }
+  std::string ErrorOf(const std::string& triangle) {
+    try {
+      Parse(std::string(kValid) + triangle);
+    } catch (const ScenarioError& e) {
+      return e.what();
+    }
+    return "no error";
+  }
+};
+
+TEST_F(CalotTriangleScenarioTest, TheTubesTheirHoldsAndPlannedCutsAreRead) {
+  EXPECT_FALSE(Parse(kValid).calot_triangle.has_value());  // optional
+  const Scenario s = Parse(std::string(kValid) + Triangle());
+  ASSERT_TRUE(s.calot_triangle.has_value());
+  const CalotTriangleConfig& c = *s.calot_triangle;
+  EXPECT_EQ(c.variant, "short cystic duct");
+  ASSERT_EQ(c.tubes.size(), 3u);
+  EXPECT_EQ(c.tubes[0].kind, physics::calot::TubeKind::kCysticDuct);
+  EXPECT_EQ(c.tubes[0].end, physics::calot::TubeEndHold::kNeck);  // a cystic structure's default
+  EXPECT_DOUBLE_EQ(c.tubes[0].planned_cut_s, 0.55);
+  EXPECT_DOUBLE_EQ(c.tubes[1].planned_cut_s, 0.6);  // the default
+  EXPECT_EQ(c.tubes[2].end, physics::calot::TubeEndHold::kClamped);  // a common duct's
+  EXPECT_EQ(c.tubes[0].source, "case.toml:" + std::to_string(std::count(kValid, kValid + std::strlen(kValid), '\n') + 6));
+  const physics::calot::TriangleDescription d = ToPhysics(c);
+  ASSERT_EQ(d.tubes.size(), 3u);
+  EXPECT_TRUE(d.p_Neck_W_m.isApprox(Eigen::Vector3d(-0.017, -0.017, 0.048)));
+  EXPECT_DOUBLE_EQ(d.tubes[1].material.outer_radius_m, 0.0008);
+  EXPECT_DOUBLE_EQ(d.tubes[0].material.outer_radius_m,
+                   physics::calot::DefaultTubeMaterial(physics::calot::TubeKind::kCysticDuct).outer_radius_m);
+  EXPECT_FALSE(d.tubes[1].end_pressurised);  // the artery bleeds from the patient's side only
+  EXPECT_TRUE(d.tubes[0].end_pressurised);   // the gallbladder's bile
+}
+
+TEST_F(CalotTriangleScenarioTest, ABadTriangleIsNamed) {
+  std::string text = Triangle();
+  text.replace(text.find("planned_cut_s = 0.55"), 20, "planned_cut_s = 1.5");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("calot_triangle.tubes[0].planned_cut_s: must be in (0, 1), got 1.5"));
+  text = Triangle();
+  text.replace(text.find("kind = \"cystic_artery\""), 22, "kind = \"hepatic_vein\"");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("unknown value 'hepatic_vein'"));
+  text = Triangle();
+  text.replace(text.find("[-0.017, -0.017, 0.048]]"), 24, "[-0.047, -0.017, 0.048]]");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("calot_triangle.tubes[0].points_m: its last point is 30 mm from neck_m"));
+  text = Triangle();
+  text.replace(text.find("kind = \"common_bile_duct\""), 25, "kind = \"common_hepatic_duct\"");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("needs exactly one cystic_duct and one common_bile_duct, got 1 and 0"));
+  EXPECT_THAT(ErrorOf(Triangle("colour = \"green\"\n")), HasSubstr("calot_triangle.tubes[0].colour: unknown key"));
+  text = Triangle();
+  text.replace(text.find("outer_radius_m = 0.0008"), 23, "outer_radius_m = 0.05");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("outer_radius_m: must be in"));
+  text = Triangle();
+  text.replace(text.find("[0.017, -0.037, 0.053], "), 24, "[-0.020, -0.015, 0.045], ");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("repeats the point before it"));
 }
 
 }  // namespace
