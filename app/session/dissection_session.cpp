@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/calot/calot_session_metrics.h"
+
 namespace vesica::app {
 
 namespace {
@@ -22,9 +24,11 @@ fx::CauterySurfaces SurfacesOf(const physics::DissectionModel& model, const phys
 }  // namespace
 
 DissectionSession::DissectionSession(std::shared_ptr<const physics::DissectionModel> model,
-                                     const fx::CauteryParams& cautery)
+                                     const fx::CauteryParams& cautery,
+                                     const std::optional<CalotSessionSetup>& calot)
     : model_(std::move(model)), scene_(model_), cautery_(SurfacesOf(*model_, scene_), cautery) {
   metrics_.springs_total = static_cast<int>(model_->tissue.springs.size());
+  if (calot) calot_ = std::make_unique<CalotTriangleStep>(*calot, scene_);
 }
 
 fx::CauteryContact DissectionSession::CauteryContactFor(const physics::ToolTouch& touch, bool pedal) const {
@@ -80,6 +84,8 @@ SessionStepReport DissectionSession::Step(const device::InputFrame& input) {
     ++report.springs_cut;
   }
 
+  if (calot_) calot_->Step(scene_, input, pedal);
+
   // Where the tools are drawn: stopped at the first surface their shafts meet.
   const std::array<double, 2> drawn = drawn_tool_limit_.Update(poses, scene_.liver_positions(),
                                                                scene_.gallbladder_surface_positions());
@@ -120,6 +126,10 @@ SessionMetrics DissectionSession::metrics() const {
   const auto& gb = cautery_.gallbladder_burn();
   for (int e = 0; e < gb.num_elements() && !m.perforation; ++e) m.perforation = gb.level(e) >= kPerforationLevel;
   m.success = m.gallbladder_free && !m.perforation;
+  if (calot_) {
+    calot::StoreCalotMetrics(calot_->metrics(), m);
+    m.success = m.success && m.calot_passed;
+  }
   return m;
 }
 

@@ -7,9 +7,11 @@
 // session lives the process's dense algebra (OpenBLAS) runs on one thread.
 
 #include <memory>
+#include <optional>
 
 #include "app/records/session_metrics.h"
 #include "app/render/render_frame.h"
+#include "app/session/calot_triangle_step.h"
 #include "app/session/drawn_tool_limit.h"
 #include "device/input/input_frame.h"
 #include "fx/cautery_effects.h"
@@ -26,7 +28,10 @@ struct SessionStepReport {
 
 class DissectionSession {
  public:
-  DissectionSession(std::shared_ptr<const physics::DissectionModel> model, const fx::CauteryParams& cautery);
+  /// With `calot`, the session runs Calot's triangle (CalotTriangleStep) after the scene each
+  /// step; without it nothing of the triangle exists and the session is as before, bit for bit.
+  DissectionSession(std::shared_ptr<const physics::DissectionModel> model, const fx::CauteryParams& cautery,
+                    const std::optional<CalotSessionSetup>& calot = std::nullopt);
 
   /// Advances one physics step with both instruments as in `input` (its time is not used: the
   /// session clock is steps x h). Throws std::invalid_argument (state unchanged) for a bad pose
@@ -40,8 +45,19 @@ class DissectionSession {
   /// Input frames whose insertion was clamped so far.
   long clamped_inputs() const { return clamped_inputs_; }
 
-  /// Metrics so far; success = gallbladder free without perforation.
+  /// Metrics so far; success = gallbladder free without perforation (and, with the Calot step,
+  /// the step passed: calot::StoreCalotMetrics fills its columns).
   SessionMetrics metrics() const;
+
+  /// Calot's triangle (issue 36); nullptr when the scenario has none.
+  const calot::CalotMetrics* calot_metrics() const { return calot_ ? &calot_->metrics() : nullptr; }
+  /// The case has ended: a bile duct injury (a clip or cut on the common bile or hepatic duct).
+  /// The SessionRunner then finishes the session as End() does. False without a triangle.
+  bool case_ended() const { return calot_ && calot_->case_ended(); }
+  /// The triangle's tubes (pieces' centrelines, clips) and fat layer, for drawing; nullptr without.
+  const physics::calot::TriangleStructures* calot_tubes() const { return calot_ ? &calot_->tubes() : nullptr; }
+  const physics::calot::FatLayer* calot_fat() const { return calot_ ? &calot_->fat() : nullptr; }
+  const CalotTriangleStep* calot_step() const { return calot_.get(); }
   /// The snapshot the laparoscope view draws (instrument count 2, in scenario order grasper, hook).
   RenderFrame MakeRenderFrame() const;
 
@@ -73,6 +89,7 @@ class DissectionSession {
   bool started_ = false;
   long clamped_inputs_ = 0;
   SessionMetrics metrics_;
+  std::unique_ptr<CalotTriangleStep> calot_;  // null without a triangle
   double force_sum_N_ = 0;
   long force_samples_ = 0;
 };

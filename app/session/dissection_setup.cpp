@@ -5,9 +5,12 @@
 #include <cstdlib>
 #include <functional>
 #include <mutex>
+#include <numbers>
 #include <set>
 #include <stdexcept>
 #include <string>
+
+#include "app/render/scope_pose.h"
 
 namespace vesica::app {
 
@@ -132,6 +135,23 @@ fx::CauteryParams DefaultCauteryParams() {
   p.smoke.initial_size_m = 0.004;
   p.smoke.growth_mps = 0.014;
   return p;
+}
+
+}  // namespace vesica::app
+
+namespace vesica::app {
+
+std::optional<CalotSessionSetup> CalotSessionSetupFor(const Scenario& scenario, double aspect) {
+  if (!scenario.calot_triangle) return std::nullopt;
+  CalotSessionSetup setup;
+  setup.triangle = *scenario.calot_triangle;
+  const ScopePose scope = ScopePoseOf(scenario.laparoscope);
+  setup.camera.p_Eye_W_m = scope.eye_W;
+  setup.camera.forward_W = scope.forward_W;
+  setup.camera.up_W = scope.up_W;
+  setup.camera.vertical_view_angle_rad = scenario.laparoscope.view_angle_deg * std::numbers::pi / 180.0;
+  setup.camera.aspect = aspect;
+  return setup;
 }
 
 }  // namespace vesica::app

@@ -5,10 +5,12 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "app/render/scene_meshes.h"
 #include "app/scenario/scenario.h"
+#include "app/session/calot_triangle_step.h"
 #include "fx/cautery_effects.h"
 #include "physics/scene/dissection_model.h"
 
@@ -30,6 +32,10 @@ std::shared_ptr<const physics::DissectionModel> BuildDissectionModelFor(const Sc
 
 /// Logs `message` as a warning unless this process already logged the same text.
 void WarnOncePerProcess(const std::string& message);
+
+/// The scenario's Calot's triangle with the laparoscope's camera (ScopePoseOf, its view angle and
+/// `aspect`, the image's width over height); none when the scenario has no [calot_triangle].
+std::optional<CalotSessionSetup> CalotSessionSetupFor(const Scenario& scenario, double aspect = 16.0 / 9.0);
 
 /// Cautery settings of a session (fx defaults; the membrane fades in 0.25 s of active contact).
 fx::CauteryParams DefaultCauteryParams();

@@ -19,7 +19,7 @@ SessionRunner::SessionRunner(std::shared_ptr<const physics::DissectionModel> mod
       cautery_(cautery),
       input_(std::move(input)),
       options_(options),
-      session_(std::make_unique<DissectionSession>(model_, cautery_)),
+      session_(std::make_unique<DissectionSession>(model_, cautery_, options_.calot)),
       recorder_(options.scenario_name),
       frames_(session_->MakeRenderFrame()) {
   for (auto& c : contact_frames_)
@@ -68,7 +68,7 @@ void SessionRunner::PhysicsLoop() {
   while (!stop_) {
     if (const int wanted = requested_session_.load(); wanted != session) {
       std::lock_guard lock(mutex_);
-      session_ = std::make_unique<DissectionSession>(model_, cautery_);
+      session_ = std::make_unique<DissectionSession>(model_, cautery_, options_.calot);
       recorder_ = device::InputRecorder(options_.scenario_name);
       status_ = RunnerStatus{};
       status_.session = session = wanted;
@@ -118,7 +118,8 @@ void SessionRunner::PhysicsLoop() {
         const Eigen::Vector3d tip = session_->scene().tool_tip(i);
         for (int k = 0; k < 3; ++k) tool_tip_[static_cast<size_t>(3 * i + k)].store(tip[k], std::memory_order_relaxed);
       }
-      const bool ended = end_asked || (options_.end_after_s >= 0 && session_->time_s() >= options_.end_after_s);
+      const bool ended = end_asked || session_->case_ended() ||
+                         (options_.end_after_s >= 0 && session_->time_s() >= options_.end_after_s);
       const Clock::time_point now = Clock::now();
       if (ended || Seconds(now - last_publish) >= options_.render_period_s) {
         frames_.Publish(session_->MakeRenderFrame());
@@ -135,7 +136,11 @@ void SessionRunner::PhysicsLoop() {
       }
       status_.metrics = session_->metrics();
       (void)r;
-      if (ended) finished = status_.finished = true;
+      if (ended) {
+        finished = status_.finished = true;
+        status_.case_ended = session_->case_ended();
+        if (const calot::CalotMetrics* calot = session_->calot_metrics()) status_.calot_metrics = *calot;
+      }
     } catch (const std::exception& e) {
       std::lock_guard lock(mutex_);
       status_.error = e.what();

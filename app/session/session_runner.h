@@ -11,6 +11,7 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -34,6 +35,8 @@ struct RunnerOptions {
   /// Real haptic devices (arms): the haptic loop reads their tool points and sends them the
   /// rendered force. Null: the force is computed at the physics tool points and only shown.
   std::shared_ptr<HapticIo> haptic_io;
+  /// The scenario's Calot's triangle (CalotSessionSetupFor), run in every session; none: no triangle.
+  std::optional<CalotSessionSetup> calot;
 };
 
 /// What the GUI shows besides the picture; copied out under a short lock.
@@ -45,7 +48,11 @@ struct RunnerStatus {
   /// machine): wall_time_s - session_time_s, >= 0; 0 when not paced to the wall clock.
   double physics_lag_s = 0;
   bool paused = false;
-  bool finished = false;  ///< end_after_s reached, End() called, or an error stopped physics
+  bool finished = false;  ///< end_after_s reached, End() called, the case ended, or an error stopped physics
+  /// The Calot step's critical error (a bile duct injury) ended the case; the trainer shows the debrief.
+  bool case_ended = false;
+  /// The Calot step's metrics once the session finished (for the debrief); none without a triangle.
+  std::optional<calot::CalotMetrics> calot_metrics;
   int session = 0;        ///< which session this status is of: 0 at Start, then the number Reset() returned
   std::string error;      ///< why physics stopped, if it did
   SessionMetrics metrics;
