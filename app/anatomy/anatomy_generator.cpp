@@ -27,7 +27,8 @@ TriangleMesh MakeLiver(const AnatomyOptions& o) {
   const Box bounds = o.liver_field ? o.liver_field_bounds : LiverBounds(o.liver);
   TriangleMesh liver =
       DecimateAndSmooth(ExtractIsosurface(field, bounds, o.liver_voxel_m), {.target_vertices = o.liver_vertices});
-  if (o.liver_relaxation_iterations > 0) RelaxOntoField(liver, field, o.liver_relaxation_iterations);
+  if (o.liver_relaxation_iterations > 0)
+    RelaxOntoField(liver, field, o.liver_relaxation_iterations, o.liver_edge_length_m);
   OrientOutward(liver, field);
   RoundCoordinates(liver.vertices, o.coordinate_resolution_m);
   LabelLiver(liver, o.gallbladder, o.liver_labels);

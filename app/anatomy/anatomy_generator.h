@@ -38,6 +38,8 @@ struct AnatomyOptions {
   /// Relaxation rounds of the liver onto its field after decimation (0: none, the default's
   /// liver): vertices back on the exact shape, so a sharp edge is not drawn as a saw.
   int liver_relaxation_iterations = 0;
+  /// The liver's edge length (metres) where the relaxation grades it; empty: uniform.
+  ImplicitField liver_edge_length_m;
   double gallbladder_voxel_m = 0.0007;  ///< fine enough for the 3 mm cystic duct
   std::vector<GallbladderResolution> gallbladder_resolutions{
       {300, 200}, {600, 370}, {1000, 550}, {1600, 800}, {3000, 1300}};

@@ -79,7 +79,8 @@ int FlipTowardsDelaunay(physics::TriangleMesh& mesh) {
 
 }  // namespace
 
-void RelaxOntoField(physics::TriangleMesh& mesh, const ImplicitField& field, int iterations) {
+void RelaxOntoField(physics::TriangleMesh& mesh, const ImplicitField& field, int iterations,
+                    const ImplicitField& edge_length_m) {
   std::vector<bool> on_boundary(mesh.num_vertices(), false);
   const physics::Triangles adjacency = physics::TriangleAdjacency(mesh);
   for (int f = 0; f < mesh.num_triangles(); ++f) {
@@ -97,8 +98,19 @@ void RelaxOntoField(physics::TriangleMesh& mesh, const ImplicitField& field, int
       if (on_boundary[i] || neighbours[i].empty()) continue;
       const Eigen::Vector3d p = previous.row(i);
       Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-      for (int j : neighbours[i]) centroid += previous.row(j).transpose();
-      centroid /= static_cast<double>(neighbours[i].size());
+      if (edge_length_m) {
+        // In a chain, x_i = sum w_j x_j / sum w_j with w = 1 / h settles at spacings in proportion to h.
+        double weights = 0;
+        for (int j : neighbours[i]) {
+          const double w = 1.0 / edge_length_m(previous.row(j).transpose());
+          centroid += w * previous.row(j).transpose();
+          weights += w;
+        }
+        centroid /= weights;
+      } else {
+        for (int j : neighbours[i]) centroid += previous.row(j).transpose();
+        centroid /= static_cast<double>(neighbours[i].size());
+      }
       const Eigen::Vector3d n = Gradient(field, p).normalized();
       Eigen::Vector3d move = centroid - p;
       move -= move.dot(n) * n;

@@ -9,7 +9,11 @@
 namespace vesica::app::anatomy {
 
 /// `iterations` rounds of flips, tangential relaxation and projection (Newton steps on `field`).
-/// Boundary vertices of open surfaces do not move.
-void RelaxOntoField(physics::TriangleMesh& mesh, const ImplicitField& field, int iterations);
+/// Boundary vertices of open surfaces do not move. With `edge_length_m` (metres, > 0 at every
+/// point; empty: uniform) the mesh is graded: each vertex moves toward its neighbours' centroid
+/// weighted by 1 / edge_length_m, so that edges come out shorter where it is smaller (a sharp
+/// crest drawn smooth with the same vertex count).
+void RelaxOntoField(physics::TriangleMesh& mesh, const ImplicitField& field, int iterations,
+                    const ImplicitField& edge_length_m = {});
 
 }  // namespace vesica::app::anatomy

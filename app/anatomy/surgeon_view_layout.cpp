@@ -1,5 +1,7 @@
 #include "app/anatomy/surgeon_view_layout.h"
 
+#include <algorithm>
+
 namespace vesica::app::anatomy {
 
 RetractedLiverShape SurgeonViewLiver() { return RetractedLiverShape{}; }
@@ -7,15 +9,17 @@ RetractedLiverShape SurgeonViewLiver() { return RetractedLiverShape{}; }
 GallbladderCentreline SurgeonViewGallbladder(const LiverSurfaceFrame& f) {
   GallbladderCentreline c;
   // (s along the edge toward the left lobe, u from the edge toward the hilum, q out of the
-  // visceral surface), metres. The fundus lies past the edge (u < 0) and behind the surface's
-  // plane (q < 0): pushed over the edge. The body's axis sits 2 mm inside that plane.
-  c.points_m = {f.At(-0.018, -0.016, -0.009),  // fundus, over the edge
-                f.At(0.000, 0.008, -0.002),    // body
-                f.At(0.006, 0.034, -0.004),    // infundibulum
-                f.At(0.012, 0.054, -0.002),    // Hartmann's pouch
-                f.At(0.020, 0.064, -0.001),    // neck
-                f.At(0.028, 0.068, 0.001)};    // cut end of the cystic-duct stub
-  c.radii_m = {0.012, 0.0135, 0.0125, 0.009, 0.005, 0.003};
+  // visceral surface), metres. The fundus lies past the edge (u < 0), pushed over it; near the
+  // edge, where the liver is thin, the gallbladder rides above the visceral surface (the edge
+  // stays whole under it), and it sinks into its shallow fossa toward the infundibulum, where the
+  // liver is thick. Hartmann's pouch and the duct stub lie toward the hilum.
+  c.points_m = {f.At(-0.018, -0.004, 0.008),  // fundus, over the edge
+                f.At(0.000, 0.020, -0.002),   // body
+                f.At(0.006, 0.044, -0.003),   // infundibulum
+                f.At(0.012, 0.064, -0.002),   // Hartmann's pouch
+                f.At(0.020, 0.074, -0.001),   // neck
+                f.At(0.028, 0.078, 0.001)};   // cut end of the cystic-duct stub
+  c.radii_m = {0.011, 0.0135, 0.0125, 0.009, 0.005, 0.003};
   c.blend_m = 0.004;
   return c;
 }
@@ -28,7 +32,15 @@ AnatomyOptions SurgeonViewAnatomyOptions() {
     return RetractedLiverField(liver, gallbladder, p);
   };
   o.liver_field_bounds = RetractedLiverBounds(liver);
-  o.liver_relaxation_iterations = 4;
+  // Graded: 2.5 mm edges along the border's thin crest and 5 mm in the fossa (where the
+  // connective tissue attaches), 14 mm far from both, so that the crest is drawn smooth rather
+  // than as a saw with the BEM's thousand vertices.
+  o.liver_relaxation_iterations = 30;
+  o.liver_edge_length_m = [liver, gallbladder = o.gallbladder](const Eigen::Vector3d& p) {
+    const double crest = 0.0025 + 0.0115 * std::min(1.0, RetractedLiverCrestDistance(liver, p) / 0.04);
+    const double fossa = 0.005 + 0.009 * std::clamp(GallbladderDistance(gallbladder, p) / 0.03, 0.0, 1.0);
+    return std::min(crest, fossa);
+  };
   // The bed is the fossa's medial rim (toward the left lobe, at or above the gallbladder's axis):
   // the springs grow toward it, so the connective tissue lies in the slot the camera looks into.
   o.liver_labels.bed_side_direction = liver.frame.Along();
@@ -45,7 +57,7 @@ AnatomyOptions SurgeonViewAnatomyOptions() {
   // left of the midline, the laparoscope at the umbilicus (the assistant's anterior-axillary
   // port holds the fundus; it carries no simulated instrument).
   o.ports.grasper_xz_m = {-0.08, 0.03};
-  o.ports.cautery_xz_m = {0.01, 0.045};
+  o.ports.cautery_xz_m = {0.01, 0.037};
   o.ports.laparoscope_xz_m = {0.0, -0.10};
   return o;
 }

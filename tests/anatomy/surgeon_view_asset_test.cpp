@@ -119,7 +119,9 @@ TEST_F(SurgeonViewAssetTest, AmericanFourPortsOnTheWallWithClearPathsToTheirWork
   EXPECT_NEAR(hook.x(), 0.0, 0.02) << "epigastric, the right hand's hook";
   EXPECT_GT(hook.z(), scope.z() + 0.12);
   // The hook reaches the gallbladder's side of the connective tissue's slot (all but the deepest
-  // few, behind the fossa's rim), and the grasper Hartmann's pouch, without crossing the liver.
+  // few, behind the fossa's rim: the fossa is shallow, the gallbladder's axis 2-3 mm under the
+  // visceral surface; 77 of 80 reached), and the grasper Hartmann's pouch, without crossing the
+  // liver.
   int slot = 0, reached = 0;
   for (int i = 0; i < gallbladder_surface.num_vertices(); ++i) {
     const Eigen::Vector3d p = gallbladder_surface.vertices.row(i);
@@ -162,6 +164,44 @@ TEST_F(SurgeonViewAssetTest, TheVisceralSurfaceAroundTheGallbladderFacesTheUmbil
   std::printf("visceral surface within 6 cm of the gallbladder: %.0f %% of %.0f cm^2 faces the scope within 60 deg\n",
               100 * facing / area, 1e4 * area);
   EXPECT_GT(facing / area, 0.6);
+}
+
+TEST_F(SurgeonViewAssetTest, TheInferiorEdgeIsThinAndFinelyMeshed) {
+  // Along the edge's middle (5 cm either side of the fundus, clear of the round ligament's
+  // notch), 8 mm in from the crest the liver is under 2 cm thick (a wedge's sharp edge, not a
+  // slab's rounded end), and the mesh's edges near the crest are short (graded), so the crest is
+  // not drawn as a saw.
+  int samples = 0;
+  for (double s = -0.05; s <= 0.05; s += 0.01) {
+    const Eigen::Vector3d crest = RetractedLiverEdgePoint(shape, s);
+    const Eigen::Vector3d inside = crest + 0.008 * shape.frame.Across() - 0.002 * shape.frame.Out();
+    if (!IsInsideClosedSurface(liver, inside)) continue;  // the fossa (gallbladder) at this s
+    const auto back = FirstRayHit(liver, inside, -shape.frame.Out());
+    ASSERT_TRUE(back.has_value()) << s;
+    std::printf("s = %+.0f cm: %.1f mm thick 8 mm in from the crest\n", 1e2 * s, 1e3 * (*back + 0.002));
+    EXPECT_LT(*back + 0.002, 0.02) << "thickness 8 mm in from the crest at s = " << s;
+    ++samples;
+  }
+  EXPECT_GE(samples, 5);
+  double near_sum = 0, far_sum = 0;
+  int near_n = 0, far_n = 0;
+  for (int f = 0; f < liver.num_triangles(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d a = liver.vertices.row(liver.triangles(f, k));
+      const Eigen::Vector3d b = liver.vertices.row(liver.triangles(f, (k + 1) % 3));
+      const double d = RetractedLiverCrestDistance(shape, 0.5 * (a + b));
+      if (d < 0.005) {
+        near_sum += (b - a).norm();
+        ++near_n;
+      } else if (d > 0.04) {
+        far_sum += (b - a).norm();
+        ++far_n;
+      }
+    }
+  std::printf("mesh edges: %.1f mm within 5 mm of the crest (%d), %.1f mm beyond 4 cm (%d)\n", 1e3 * near_sum / near_n,
+              near_n, 1e3 * far_sum / far_n, far_n);
+  EXPECT_LT(near_sum / near_n, 0.005);
+  EXPECT_LT(near_sum / near_n, 0.5 * far_sum / far_n);
 }
 
 TEST(SurgeonViewReproducibilityTest, GeneratorReproducesTheCommittedFiles) {

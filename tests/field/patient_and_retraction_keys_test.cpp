@@ -105,7 +105,7 @@ TEST(PatientAndRetractionKeys, BadValuesAreRefusedByName) {
   EXPECT_NE(missing.find("assistant_retraction.grasp_point_m"), std::string::npos) << missing;
   // A grasp point away from the gallbladder holds nothing: the physics says so.
   const Scenario far =
-      Parse(With(text, "grasp_point_m = [-0.0693, 0.0700, 0.0715]", "grasp_point_m = [0.1, 0.0, 0.0]"));
+      Parse(With(text, "grasp_point_m = [-0.0651, 0.0633, 0.0482]", "grasp_point_m = [0.1, 0.0, 0.0]"));
   const physics::DissectionModelInputs in = MakeDissectionInputs(far, LoadSceneMeshes(far));
   try {
     physics::MakeAssistantRetraction(in.gallbladder_mesh, in.settings.assistant_retraction);
