@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "../app/screen_projection.h"
 #include "app/scenario/scenario.h"
 
 namespace vesica::app::testing {
@@ -16,20 +17,16 @@ struct ScopeRay {
   Eigen::Vector3d direction;  ///< unit
 };
 
-inline Eigen::Vector3d ScopeEye(const LaparoscopeConfig& scope) {
-  const Eigen::Vector3d forward = (scope.look_at_m - scope.position_m).normalized();
-  return scope.position_m + scope.insertion_m * forward;
-}
+/// The scope's tip: on its shaft, insertion_m in from the port (the angled optic, CameraOf).
+inline Eigen::Vector3d ScopeEye(const LaparoscopeConfig& scope) { return CameraOf(scope).eye; }
 
 /// The ray through the centre of pixel (col, row) of a width x height picture.
 inline ScopeRay RayThroughPixel(const LaparoscopeConfig& scope, double col, double row, int width, int height) {
-  const Eigen::Vector3d forward = (scope.look_at_m - scope.position_m).normalized();
-  const Eigen::Vector3d up = (Eigen::Vector3d::UnitY() - forward.y() * forward).normalized();
-  const Eigen::Vector3d right = up.cross(forward);
+  const ScopeCamera c = CameraOf(scope);
   const double t = std::tan(0.5 * scope.view_angle_deg * std::numbers::pi / 180.0);
   const double x_ndc = 2.0 * (col + 0.5) / width - 1.0, y_ndc = 1.0 - 2.0 * (row + 0.5) / height;
-  const Eigen::Vector3d d = forward + x_ndc * t * width / height * right + y_ndc * t * up;
-  return {ScopeEye(scope), d.normalized()};
+  const Eigen::Vector3d d = c.forward + x_ndc * t * width / height * c.right + y_ndc * t * c.up;
+  return {c.eye, d.normalized()};
 }
 
 }  // namespace vesica::app::testing

