@@ -13,6 +13,7 @@
 #include "physics/bem/capacitance_solver.h"
 #include "physics/bem/footprint_contact_solver.h"
 #include "physics/bem/graded_surface_refinement.h"
+#include "physics/bem/tool_contact_load.h"
 
 namespace vesica::convergence {
 namespace {
@@ -176,6 +177,22 @@ LiverHookResult SolveLiverHookWithModes(const TriangleMesh& trainer, const ToolL
   }
   r.displacement_error = std::sqrt(diff2 / ref2);
   return r;
+}
+
+double LiverDiscPushForce(const TriangleMesh& trainer, const ToolLoadReference& ref, const LiverHookSetup& setup,
+                          const physics::BemModel& model, double radius_m) {
+  const physics::ToolFootprint ring = OneRingFootprint(trainer, setup);
+  const Eigen::Vector3d normal = ring.normal_W;
+  // The tip vertex is a corner of its first ring triangle on every level (old vertices keep
+  // their indices): barycentric weights 1 there.
+  int triangle = -1;
+  Eigen::Vector3d weights = Eigen::Vector3d::Zero();
+  for (int f : setup.footprint_triangles)
+    for (int c = 0; c < 3 && triangle < 0; ++c)
+      if (setup.surface.triangles(f, c) == setup.tip) triangle = f, weights[c] = 1.0;
+  const physics::BemContactLoad load = physics::MakeToolContactLoad(model, triangle, weights, normal, radius_m);
+  const double compliance_m_per_N = normal.dot(physics::ContactLoadCompliance(model, load, load) * normal);
+  return std::abs(normal.dot(ref.prescribed_m)) / compliance_m_per_N;
 }
 
 TriangleMesh ReadTrainerLiver(const std::string& source_dir) {

@@ -63,6 +63,14 @@ LiverHookResult SolveLiverHookWithModes(const physics::TriangleMesh& trainer_liv
                                         const LiverHookSetup& setup, const physics::BemModel& model,
                                         const physics::FootprintOptions& options = {});
 
+/// The trainer's own tool footprint (physics/bem/tool_contact_load.h, as the scene loads the liver):
+/// a disc of `radius_m` around the tip vertex, in the plane normal to the one-ring's mean normal,
+/// pushed by the reference's displacement along its normal only (the scene's contact row): the
+/// magnitude of the force along that normal (N). No CalculiX reference exists for it; the study
+/// compares levels.
+double LiverDiscPushForce(const physics::TriangleMesh& trainer_liver, const ToolLoadReference& ref,
+                          const LiverHookSetup& setup, const physics::BemModel& model, double radius_m);
+
 /// data/anatomy/liver.vtk and tests/bem/data/liver_hook_reference.txt under the source tree.
 physics::TriangleMesh ReadTrainerLiver(const std::string& source_dir);
 ToolLoadReference ReadLiverHookReference(const std::string& source_dir);
