@@ -25,8 +25,8 @@ struct ScopeCamera {
 inline ScopeCamera CameraOf(const LaparoscopeConfig& scope) {
   const Eigen::Vector3d along = (scope.look_at_m - scope.position_m).normalized();
   // A negative angle: the light post turned the other way, the shaft tilted away from the wall.
-  const Eigen::Vector3d wall = std::copysign(1.0, scope.scope_angle_deg) *
-                               (Eigen::Vector3d::UnitY() - along.y() * along).normalized();
+  const Eigen::Vector3d wall =
+      std::copysign(1.0, scope.scope_angle_deg) * (Eigen::Vector3d::UnitY() - along.y() * along).normalized();
   const double angle = std::abs(scope.scope_angle_deg) * std::numbers::pi / 180.0;
   auto shaft_at = [&](double tilt) { return Eigen::Vector3d(std::cos(tilt) * along + std::sin(tilt) * wall); };
   auto sight_angle = [&](double tilt) {
@@ -52,8 +52,7 @@ inline ScopeCamera CameraOf(const LaparoscopeConfig& scope) {
 /// aspect ratio. The patient frame (x left, y anterior, z cranial) is left-handed, so seen from
 /// the feet the patient's left (+x) is on the image's right when looking cranially: image right =
 /// up x forward here, not forward x up.
-inline Eigen::Vector2d ProjectToPixel(const LaparoscopeConfig& scope, const Eigen::Vector3d& p, int width,
-                                      int height) {
+inline Eigen::Vector2d ProjectToPixel(const LaparoscopeConfig& scope, const Eigen::Vector3d& p, int width, int height) {
   const ScopeCamera c = CameraOf(scope);
   const Eigen::Vector3d d = p - c.eye;
   const double t = std::tan(0.5 * scope.view_angle_deg * std::numbers::pi / 180.0);

@@ -4,6 +4,8 @@
 // Checked by the geometry's own properties and against the independent camera of
 // tests/app/screen_projection.h (bisection instead of the law of sines).
 
+#include "app/render/scope_pose.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,7 +15,6 @@
 #include <vector>
 
 #include "../app/screen_projection.h"
-#include "app/render/scope_pose.h"
 #include "app/scenario/scenario_loader.h"
 
 namespace vesica::app {
@@ -98,7 +99,8 @@ TEST(ScopePose, AZeroDegreeScopeIsTheStraightScopeExactly) {
     // The straight scope, as it was computed before the angled optic.
     const Eigen::Vector3d forward = (s.look_at_m - s.position_m).normalized();
     const Eigen::Vector3d eye = s.position_m + s.insertion_m * forward;
-    const Eigen::Vector3d up = (Eigen::Vector3d::UnitY() - Eigen::Vector3d::UnitY().dot(forward) * forward).normalized();
+    const Eigen::Vector3d up =
+        (Eigen::Vector3d::UnitY() - Eigen::Vector3d::UnitY().dot(forward) * forward).normalized();
     EXPECT_EQ(p.forward_W, forward);
     EXPECT_EQ(p.eye_W, eye);
     EXPECT_EQ(p.up_W, up);
