@@ -3,9 +3,10 @@
 # scenario's first frame (default-view.png) and the committed dissection at 9 s, the hook at the
 # membrane (mid-dissection.png). Needs an X server: without a display it starts its own Xvfb.
 #   ./scripts/make_doc_images.sh            (after ./scripts/setup.sh release)
+#   VESICA_BUILD_DIR=build/other ./scripts/make_doc_images.sh   (another build of vesica-trainer and vesica-replay)
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
-bin="$here/build/release/app"
+bin="$(cd "$here" && realpath "${VESICA_BUILD_DIR:-build/release}")/app"
 out="$here/docs/images"
 x=()
 [ -n "${DISPLAY:-}" ] || x=(xvfb-run -a -s "-screen 0 1280x720x24")

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 #include "physics/collision/surface_ray_caster.h"
@@ -268,6 +269,22 @@ class OrganSight {
   int liver_ = -1, gallbladder_ = -1;
 };
 
+// The fraction of the attached membrane's area whose centroids `eye` sees (the measure of
+// tests/field/committed_dissection_sight_test.cpp); 1 when none is attached.
+double MembraneInSight(const physics::DissectionScene& scene, const OrganSight& sight, const Vec3& eye) {
+  const physics::Vertices points = scene.membrane_points();
+  const physics::TissueMembrane& membrane = scene.tissue().membrane;
+  double area = 0, seen = 0;
+  for (const MembraneTarget& m : AttachedMembrane(scene)) {
+    const Vec3 a = points.row(membrane.triangles(m.triangle, 0)), b = points.row(membrane.triangles(m.triangle, 1)),
+               c = points.row(membrane.triangles(m.triangle, 2));
+    const double a_m2 = 0.5 * (b - a).cross(c - a).norm();
+    area += a_m2;
+    if (sight.Clear(eye, m.centroid, 0.0005)) seen += a_m2;
+  }
+  return area > 0 ? seen / area : 1.0;
+}
+
 std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const ScriptedSurgeonSettings& st) {
   const physics::DissectionModel& model = session.scene().model();
   const physics::DissectionScene& scene = session.scene();
@@ -277,7 +294,7 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
   const physics::InstrumentMount& hook = model.instruments[1];
 
   // The neck: the gallbladder node farthest from the assistant's hold on the fundus. Hartmann's
-  // pouch: a quarter of the way from the neck to the fundus, where the grasper's port sees it.
+  // pouch: the stretch from a sixth to a third of the way from the neck to the fundus.
   const physics::Vertices& rest = model.gallbladder->rest_mesh.vertices;
   Vec3 fundus = Vec3::Zero();
   for (int node : model.retraction.nodes) fundus += rest.row(node).transpose();
@@ -285,26 +302,41 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
   Vec3 neck = fundus;
   for (Eigen::Index v = 0; v < rest.rows(); ++v)
     if ((rest.row(v).transpose() - fundus).norm() > (neck - fundus).norm()) neck = rest.row(v).transpose();
-  const Vec3 pouch_centre = neck + 0.25 * (fundus - neck);
+  auto along_gallbladder = [&](const Vec3& p) { return (p - neck).dot(fundus - neck) / (fundus - neck).squaredNorm(); };
   const physics::TriangleMesh& surface = model.gallbladder_boundary.surface;
   const physics::Vertices rest_normals = VertexNormals(surface, surface.vertices);
+  OrganSight sight(scene);
+  sight.Update();
+  // The grasper takes the pouch where its jaws come at it most squarely along a path from its
+  // port that crosses neither organ (the pouch's side facing the port is often seen edge-on from
+  // it: the port lies toward the liver's edge, above the gallbladder).
   int pouch = -1;
+  double best_facing = 0;
   for (int v = 0; v < surface.num_vertices(); ++v) {
-    const Vec3 p = surface.vertices.row(v).transpose();
-    if (rest_normals.row(v).dot((grasper.p_RemoteCentre_W - p).normalized()) < 0.5) continue;
-    if (pouch < 0 || (p - pouch_centre).norm() < (surface.vertices.row(pouch).transpose() - pouch_centre).norm())
-      pouch = v;
+    const Vec3 p = surface.vertices.row(v).transpose(), n = rest_normals.row(v).transpose();
+    const double along = along_gallbladder(p);
+    if (along < 1.0 / 6 || along > 1.0 / 3) continue;
+    const double facing = n.dot((grasper.p_RemoteCentre_W - p).normalized());
+    if (facing <= best_facing || !sight.Clear(grasper.p_RemoteCentre_W, p + 0.002 * n, 0.0)) continue;
+    best_facing = facing;
+    pouch = v;
   }
-  if (pouch < 0) throw std::runtime_error("scripted dissection: Hartmann's pouch does not face the grasper's trocar");
+  if (pouch < 0)
+    throw std::runtime_error("scripted dissection: the grasper's port reaches no side of Hartmann's pouch");
   // The traction's direction: laterally, away from the fossa's rim the springs were grown
   // toward, which opens the slot beside the gallbladder to the scope. (Lifting toward the scope as
   // well turned the membrane edge-on: 79 % of it in sight at worst, against 90 %.)
   auto traction_for = [&](const Vec3&) -> Vec3 { return -model.toward_liver; };
   int grip = pouch;
+  if (st.log_progress)
+    std::fprintf(stderr,
+                 "grasping Hartmann's pouch at vertex %d, %.2f of the way from the neck to the fundus, facing the port "
+                 "at %.0f degrees\n",
+                 pouch, along_gallbladder(surface.vertices.row(pouch).transpose()),
+                 std::acos(best_facing) * 180 / std::numbers::pi);
   Vec3 lateral = traction_for(surface.vertices.row(pouch).transpose());
   double stuck_since = -1;
 
-  OrganSight sight(scene);
   enum class Phase { kSettle, kApproach, kRetract, kDissect, kRelease, kDone } phase = Phase::kSettle;
   // The hook's moves on one target: to 5 mm short of it along its shaft, then with the pedal
   // down through it to 2 mm past, then back to where it started burning.
@@ -498,10 +530,18 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
         break;
     }
     const SessionStepReport r = StepBoth(session, grasper, grasp_tip, jaw, hook, hook_tip, pedal, frames);
-    if (st.log_progress && session.scene().steps() % static_cast<long>(1.0 / h + 0.5) == 0)
-      std::fprintf(stderr, "t %6.2f s phase %d springs alive %3d grasp %d target %4d f %.2f/%.2f N\n", session.time_s(),
-                   static_cast<int>(phase), scene.tissue().num_alive(), static_cast<int>(scene.grasp().state()),
-                   target_triangle, r.physics.tool_force_N[0].norm(), r.physics.tool_force_N[1].norm());
+    if (st.log_progress && session.scene().steps() % static_cast<long>(0.5 / h + 0.5) == 0) {
+      double in_sight = -1;
+      if (st.scope_eye_W) {
+        sight.Update();
+        in_sight = MembraneInSight(scene, sight, *st.scope_eye_W);
+      }
+      std::fprintf(stderr,
+                   "t %6.2f s phase %d springs alive %3d grasp %d target %4d f %.2f/%.2f N membrane in sight %.1f %%\n",
+                   session.time_s(), static_cast<int>(phase), scene.tissue().num_alive(),
+                   static_cast<int>(scene.grasp().state()), target_triangle, r.physics.tool_force_N[0].norm(),
+                   r.physics.tool_force_N[1].norm(), 100 * in_sight);
+    }
   }
   return frames;
 }

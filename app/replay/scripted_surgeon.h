@@ -2,11 +2,11 @@
 // A scripted two-handed dissection, planned step by step from the live scene (closed loop), the
 // way the committed demo recording data/recordings/dissection.csv was made. Two plans:
 //  - the assistant holds the fundus (the surgeon's view, [assistant_retraction]): the left hand's
-//    grasper takes Hartmann's pouch and retracts it laterally, away from the fossa's rim, further
-//    as the springs go; the hook burns the membrane from the neck toward the fundus, triangle by
-//    triangle, taking only what it reaches without crossing an organ and what the scope sees, in
-//    short bursts with the pedal down; once the gallbladder is free it is held a moment in the
-//    jaws, then let go;
+//    grasper takes Hartmann's pouch (a sixth to a third of the way from the neck to the fundus,
+//    where a straight path from its port meets the surface most squarely) and retracts it
+//    laterally, away from the fossa's rim, further as the springs go; the hook burns the membrane from the neck toward
+//    the fundus, triangle by triangle, taking only what it reaches without crossing an organ and what the scope sees,
+//    in short bursts with the pedal down; once the gallbladder is free it is held a moment in the jaws, then let go;
 //  - no assistant (the overview layout): the grasper takes the fundus and retracts it away from
 //    the liver; the hook burns spring by spring from the fundus end to the neck.
 // Tips move at bounded speed; the jaw and pedal switch only while the tips are still.
