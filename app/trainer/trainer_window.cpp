@@ -15,6 +15,7 @@
 #include <QLabel>
 #include <QMenuBar>
 #include <QMouseEvent>
+#include <QPushButton>
 #include <QStatusBar>
 #include <QTimer>
 #include <QWheelEvent>
@@ -23,6 +24,7 @@
 #include <exception>
 #include <thread>
 
+#include "app/calot/debrief_screen.h"
 #include "app/history/history_window.h"
 #include "app/history/metrics_panel.h"
 #include "app/records/pending_sessions.h"
@@ -76,6 +78,15 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
   dock->setWidget(metrics_panel_);
   addDockWidget(Qt::RightDockWidgetArea, dock);
   dock->hide();
+  if (scenario.calot_triangle) {
+    calot_debrief_ = new calot::DebriefScreen(this);
+    auto* debrief_dock = new QDockWidget("Calot's triangle: debrief", this);
+    debrief_dock->setObjectName("calot_debrief_dock");
+    debrief_dock->setWidget(calot_debrief_);
+    addDockWidget(Qt::LeftDockWidgetArea, debrief_dock);
+    debrief_dock->hide();
+    connect(calot_debrief_->CloseButton(), &QPushButton::clicked, debrief_dock, &QDockWidget::hide);
+  }
 
   QMenu* session = menuBar()->addMenu("&Session");
   session->addAction("&Pause / resume (P)", [this] { runner_->SetPaused(!runner_->Status().paused); });
@@ -159,6 +170,8 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
   RunnerOptions ro;
   ro.scenario_name = scenario_.name;
   ro.real_time = options_.real_time;
+  // The laparoscope's picture is the window's 16:9 (what of the tubes the camera sees).
+  ro.calot = CalotSessionSetupFor(scenario_);
   std::string what, fallback;
   device::InputFrame initial;
   for (size_t i = 0; i < 2 && i < poses_.size(); ++i) initial.instruments[i].pose = poses_[i];
@@ -222,7 +235,7 @@ bool TrainerWindow::StartSession(InputChoice choice, const std::filesystem::path
   if (choice == InputChoice::kKeyboard) arms_.reset();  // after the runner that used it is gone
   finished_shown_ = stored_ = false;
   stored_id_.reset();
-  if (auto* dock = findChild<QDockWidget*>("metrics_dock")) dock->hide();
+  HideEndOfSessionDocks();
   started_unix_s_ = UnixNow();
   runner_->Start();
   statusBar()->showMessage(QString::fromStdString(
@@ -291,7 +304,12 @@ void TrainerWindow::ResetSession() {
   started_unix_s_ = UnixNow();
   finished_shown_ = stored_ = false;
   stored_id_.reset();
-  if (auto* dock = findChild<QDockWidget*>("metrics_dock")) dock->hide();
+  HideEndOfSessionDocks();
+}
+
+void TrainerWindow::HideEndOfSessionDocks() {
+  for (const char* name : {"metrics_dock", "calot_debrief_dock"})
+    if (auto* dock = findChild<QDockWidget*>(name)) dock->hide();
 }
 
 void TrainerWindow::SetScenarioOpener(std::function<void(const std::filesystem::path&)> open) {
@@ -393,6 +411,15 @@ void TrainerWindow::OnFinished(const RunnerStatus& status, bool unfinished) {
   record.unfinished = unfinished;
   metrics_panel_->Show(record.metrics);
   if (auto* dock = findChild<QDockWidget*>("metrics_dock")) dock->show();
+  // The Calot step's debrief when the case ended (the critical error or the trainee's End); not
+  // when the trainer is closing over a running case.
+  if (calot_debrief_ && status.calot_metrics && !unfinished) {
+    calot_debrief_->Show(*status.calot_metrics);
+    if (auto* dock = findChild<QDockWidget*>("calot_debrief_dock")) {
+      dock->show();
+      dock->raise();
+    }
+  }
   if (!status.error.empty()) last_error_ = "physics stopped: " + status.error;
 
   // The input recording is a bonus: when it cannot be written the session is stored without it.
@@ -413,7 +440,9 @@ void TrainerWindow::OnFinished(const RunnerStatus& status, bool unfinished) {
       }
     }
   }
-  const std::string what = unfinished ? "Session stopped (stored as unfinished)" : "Session finished";
+  const std::string what = unfinished        ? "Session stopped (stored as unfinished)"
+                           : status.case_ended ? "Case ended: bile duct injury (see the debrief)"
+                                               : "Session finished";
   if (!saver_) {
     statusBar()->showMessage(QString::fromStdString(what + " (not stored: no records database)" + recording_note_));
     return;

@@ -2,7 +2,9 @@
 // The trainer's main window: the laparoscope view (QVTKOpenGLNativeWidget) of a running
 // dissection session, a diagnostics overlay (loop rates and jitter, forces), keyboard control of
 // both instruments, pause/reset/end, camera zoom and look-around, and at the end the metrics
-// panel; the finished session is stored in the records database with its input recording.
+// panel; the finished session is stored in the records database with its input recording. With
+// Calot's triangle in the scenario the debrief screen opens beside the metrics when the case ends
+// (the critical error ends it, as Enter does).
 // The window only reads snapshots: it never blocks the physics or haptic loops (SessionRunner).
 
 #include <QMainWindow>
@@ -28,6 +30,9 @@ namespace vesica::app {
 
 class ArmBridge;
 class MetricsPanel;
+namespace calot {
+class DebriefScreen;
+}
 
 struct TrainerOptions {
   std::string trainee_id = "trainee";
@@ -94,6 +99,9 @@ class TrainerWindow : public QMainWindow {
   /// Id of the stored record, once the finished session was written.
   std::optional<std::int64_t> stored_session_id() const { return stored_id_; }
   MetricsPanel* metrics_panel() const { return metrics_panel_; }
+  /// The Calot step's debrief (in the dock "calot_debrief_dock", shown when a case with the step
+  /// ends); nullptr when the scenario has no [calot_triangle].
+  calot::DebriefScreen* calot_debrief() const { return calot_debrief_; }
   QLabel* diagnostics() const { return diagnostics_; }
   /// The three loops' rates and jitter so far, one line each (the overlay's text; logged at exit
   /// so that a run under Xvfb states the software-rendering rate).
@@ -113,6 +121,7 @@ class TrainerWindow : public QMainWindow {
   RunnerStatus EndAndWait();
   std::unique_ptr<ArmBridge> OpenArms() const;  // the scenario's arms; throws why they cannot open  // ends the session, waits (bounded) for physics to stop
   void OnFinished(const RunnerStatus& status, bool unfinished = false);
+  void HideEndOfSessionDocks();  // the metrics and the debrief: a new session starts
   void TakeSaveResults();  // the saver's news -> stored_id_, status bar
   void OpenHistory();
   void OpenCalibration();  // Tools > Calibrate arms: the arms released to the panel while it is open
@@ -129,6 +138,7 @@ class TrainerWindow : public QMainWindow {
   QLabel* saving_label_ = nullptr;  // "saving..." while the saver works
   QLabel* lag_label_ = nullptr;     // "physics behind real time" while it is
   MetricsPanel* metrics_panel_ = nullptr;
+  calot::DebriefScreen* calot_debrief_ = nullptr;  // null without a triangle
   QTimer* timer_ = nullptr;
   LoopStats render_stats_;
   void SendManualPoses();          // keyboard/mouse poses and pedal -> the live input
