@@ -1,8 +1,9 @@
 #pragma once
 // Issue 37's gallbladder study: the grasper's jaw (10 x 5 mm, as the reference places it) pulled
-// by the reference's prescribed displacement, the bed (boundary nodes within 6 mm of a liver
-// vertex) held, solved by linear statics with the trainer's linear tets (physics/fem), compared
-// with the converged CalculiX reference (tool_load_reference.h).
+// (all components prescribed) or pressed (frictionless: the normal component only) by the
+// reference's prescribed displacement, the bed (boundary nodes within 6 mm of a liver vertex)
+// held, solved by linear statics with the trainer's linear tets (physics/fem), compared with the
+// converged CalculiX reference (tool_load_reference.h).
 
 #include <Eigen/Core>
 #include <string>
@@ -17,22 +18,41 @@ inline constexpr double kBedDistance_m = 0.006;  ///< reference.py's BED_DISTANC
 inline constexpr double kJawLength_m = 0.010;
 inline constexpr double kJawWidth_m = 0.005;
 
+/// How the jaw acts on the mesh.
+enum class JawModel {
+  /// The boundary nodes inside the rectangle are prescribed (the study's first model): the force
+  /// follows how many nodes fall inside (1, 4, 4, 4, 10 on the committed gallbladders).
+  kNodesInside,
+  /// The jaw's footprint (physics/fem/jaw_footprint.h) moves on average with the jaw: one
+  /// multiplier per prescribed component, a uniform traction over the exact rectangle.
+  kFootprintMean,
+  /// As kFootprintMean, and the footprint does not tilt either (its first moments along and across
+  /// the jaw are held): a traction linear over the rectangle, three multipliers per component.
+  kFootprintMeanAndTilt,
+};
+
+enum class JawLoad { kPull, kPress };
+
+const char* JawModelName(JawModel model);
+
 struct GallbladderGraspResult {
   int nodes = 0;
-  int jaw_nodes = 0;                                  ///< boundary nodes in the jaw's footprint (prescribed)
+  int jaw_nodes = 0;                                  ///< nodes prescribed or reached by the footprint
   double mean_edge_m = 0;                             ///< mean boundary edge
-  Eigen::Vector3d force_N = Eigen::Vector3d::Zero();  ///< total reaction on the jaw's nodes
+  Eigen::Vector3d force_N = Eigen::Vector3d::Zero();  ///< total reaction on the jaw
   double force_error = 0;                             ///< |F - F_ref| / |F_ref|
 };
 
 /// Whether a point lies in the jaw's footprint (reference.py's in_jaw).
-bool InJaw(const Eigen::Vector3d& p_m, const ToolLoadReference& ref);
+bool InJaw(const Eigen::Vector3d& p_m, const ToolLoadReference& ref, JawLoad load = JawLoad::kPull);
 
 GallbladderGraspResult SolveGallbladderGrasp(const physics::TetrahedralMesh& gallbladder,
-                                             const physics::TriangleMesh& liver, const ToolLoadReference& ref);
+                                             const physics::TriangleMesh& liver, const ToolLoadReference& ref,
+                                             JawModel model = JawModel::kFootprintMean, JawLoad load = JawLoad::kPull);
 
-/// data/anatomy/gallbladder_<nodes>.vtu and tests/fem/data/gallbladder_grasp_reference.txt.
+/// data/anatomy/gallbladder_<nodes>.vtu and tests/fem/data/gallbladder_{grasp,press}_reference.txt.
 physics::TetrahedralMesh ReadTrainerGallbladder(const std::string& source_dir, int nodes);
 ToolLoadReference ReadGallbladderGraspReference(const std::string& source_dir);
+ToolLoadReference ReadGallbladderPressReference(const std::string& source_dir);
 
 }  // namespace vesica::convergence

@@ -13,7 +13,11 @@ only split, never moved, so every trainer vertex is a node of the reference):
                   data/anatomy/gallbladder_1000_surface.vtk; the grasper's jaw: a 10 x 5 mm
                   footprint (long side along the gallbladder's axis) on the side facing away from
                   the liver, pulled 5 mm out along its normal; the bed (surface within 6 mm of a
-                  liver vertex) fixed. E = 2.3 kPa, nu = 0.45.
+                  liver vertex) fixed. E = 2.3 kPa, nu = 0.45. The footprint is the exact
+                  rectangle at every level: the surface is cut along its four sides first.
+  gallbladder-press
+                  the same jaw pressed 5 mm in along its normal, frictionless: the normal
+                  component prescribed, the tangential ones free (closed jaws pushing the wall).
 
 Each case is meshed with quadratic tets (gmsh, C3D10) graded toward the contact: the surface is
 split 1:4 (red-green, conforming) in shrinking rings around the contact, the volume grows from it.
@@ -26,9 +30,10 @@ under 1 %; the last level is written to tests/bem/data or tests/fem/data:
   centre_m, jaw_long_axis     (grasp only) the jaw's centre and its long side
 
 Usage (slow: minutes to an hour; one thread, niced):
-  python3 tools/convergence/reference.py [--case liver-hook|gallbladder-grasp|all] [--keep DIR]
+  python3 tools/convergence/reference.py [--case liver-hook|gallbladder-grasp|gallbladder-press|all] [--keep DIR]
 With --keep DIR, a level whose ccx results are already in DIR is read back, not solved again, so
-an interrupted run resumes where it stopped.
+an interrupted run resumes where it stopped (a level meshed but not solved keeps its mesh); with
+--mesh-from DIR2 as well, the press takes the grasp's finished meshes from DIR2 (or vice versa).
 """
 
 import argparse
@@ -47,6 +52,7 @@ INDENT_M = 0.005
 BED_DISTANCE_M = 0.006
 JAW_LENGTH_M = 0.010
 JAW_WIDTH_M = 0.005
+JAW_SNAP_M = 0.0001
 
 
 # ---------------------------------------------------------------------------------------------
@@ -146,6 +152,49 @@ def refine(pts, tris, flags, near):
     return pts, out_t, out_f
 
 
+# Cutting a surface along a plane's trace, conformingly: every edge whose ends lie strictly on
+# opposite sides of f = 0 (f linear in position) and both in the patch is split at f = 0 (a point
+# on the edge, so the geometry is kept), and each triangle is split along its cut edges. Corners
+# within `snap` of the line count as on it (no sliver next to them; the trace then bends through
+# that corner by at most `snap`).
+def cut_along(pts, tris, flags, f, in_patch, snap):
+    value = [f(p) for p in pts]
+    side = [0 if abs(v) <= snap else (1 if v > 0 else -1) for v in value]
+    patch = [in_patch(p) for p in pts]
+    pts = list(pts)
+    mid = {}
+
+    def cut(a, b):
+        e = (min(a, b), max(a, b))
+        if not (patch[a] and patch[b] and side[a] * side[b] < 0):
+            return None
+        if e not in mid:
+            s = value[e[0]] / (value[e[0]] - value[e[1]])
+            mid[e] = len(pts)
+            pts.append(tuple(pts[e[0]][k] + s * (pts[e[1]][k] - pts[e[0]][k]) for k in range(3)))
+        return mid[e]
+
+    out_t, out_f = [], []
+    for t, fl in zip(tris, flags):
+        a, b, c = t
+        x = [cut(a, b), cut(b, c), cut(c, a)]
+        n_cut = sum(v is not None for v in x)
+        if n_cut == 0:
+            children = [t]
+        elif n_cut == 1:  # through the opposite corner (on the line, or the patch's border)
+            k = next(i for i in range(3) if x[i] is not None)
+            p, q, o = t[k], t[(k + 1) % 3], t[(k + 2) % 3]
+            children = [(p, x[k], o), (x[k], q, o)]
+        else:  # two cut edges: the corner between them alone on its side
+            k = next(i for i in range(3) if x[i] is None)  # the uncut edge t[k] - t[k+1]
+            p, q, o = t[k], t[(k + 1) % 3], t[(k + 2) % 3]
+            xq, xo = x[(k + 1) % 3], x[(k + 2) % 3]  # on q-o and o-p
+            children = [(xo, xq, o), (p, q, xq), (p, xq, xo)]
+        out_t += children
+        out_f += [fl] * len(children)
+    return pts, out_t, out_f
+
+
 def segment_distance(p, a, b):
     ab, ap = sub(b, a), sub(p, a)
     s = max(0.0, min(1.0, dot(ap, ab) / dot(ab, ab)))
@@ -154,7 +203,10 @@ def segment_distance(p, a, b):
 
 # ---------------------------------------------------------------------------------------------
 # gmsh: quadratic tets from the refined surface (kept as is), sizes growing away from the contact.
-def mesh_volume(work, pts, tris, centre, size_near, size_far, reach):
+def mesh_volume(work, pts, tris, centre, size_near, size_far, reach, hxt=False):
+    """hxt: gmsh's HXT tetrahedraliser instead of the default Delaunay, which gives up ("a deleted
+    triangle is a neighbor of a non deleted triangle") on the gallbladder's level 3, whose surface
+    has the thin triangles that the cuts along the jaw's sides leave."""
     stl = work / "surface.stl"
     with open(stl, "w") as f:
         f.write("solid s\n")
@@ -166,6 +218,7 @@ def mesh_volume(work, pts, tris, centre, size_near, size_far, reach):
             f.write("endloop\nendfacet\n")
         f.write("endsolid s\n")
     geo = work / "volume.geo"
+    algorithm = "\nMesh.Algorithm3D = 10;" if hxt else ""
     geo.write_text(f"""Merge "surface.stl";
 Surface Loop(1) = {{1}};
 Volume(1) = {{1}};
@@ -178,7 +231,7 @@ Background Field = 2;
 Mesh.MeshSizeExtendFromBoundary = 1;
 Mesh.ElementOrder = 2;
 Mesh.SecondOrderLinear = 1;
-Mesh.Optimize = 1;
+Mesh.Optimize = 1;{algorithm}
 Mesh.MshFileVersion = 2.2;
 General.NumThreads = 1;
 """)
@@ -244,7 +297,9 @@ def region_nodes(pts, tris, flags, flag, index):
     return out
 
 
-def solve_ccx(work, nodes, tets, fixed, contact, displacement, youngs_Pa, poisson, trainer_nodes):
+def solve_ccx(work, nodes, tets, fixed, contact, displacement, youngs_Pa, poisson, trainer_nodes, normal_only=None):
+    """normal_only: a unit vector; then the contact nodes move only along it (a frictionless press:
+    a local system whose x is the normal, x prescribed, y and z free)."""
     with open(work / "job.inp", "w") as f:
         f.write("*NODE\n")
         for i, p in nodes.items():
@@ -263,10 +318,19 @@ def solve_ccx(work, nodes, tets, fixed, contact, displacement, youngs_Pa, poisso
         nset("NCONTACT", contact)
         nset("NTRAINER", trainer_nodes)
         f.write(f"*MATERIAL, NAME=TISSUE\n*ELASTIC\n{youngs_Pa},{poisson}\n")
-        f.write("*SOLID SECTION, ELSET=EALL, MATERIAL=TISSUE\n*STEP\n*STATIC\n*BOUNDARY\nNFIXED,1,3,0.\n")
-        for c in range(3):
-            f.write(f"NCONTACT,{c + 1},{c + 1},{displacement[c]:.12e}\n")
-        f.write("*NODE PRINT, NSET=NCONTACT, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=NTRAINER\nU\n*END STEP\n")
+        f.write("*SOLID SECTION, ELSET=EALL, MATERIAL=TISSUE\n")
+        if normal_only is not None:
+            n = normal_only
+            t = unit(cross(n, (1.0, 0.0, 0.0) if abs(n[0]) < 0.9 else (0.0, 1.0, 0.0)))
+            f.write(f"*TRANSFORM, NSET=NCONTACT, TYPE=R\n{n[0]:.12e},{n[1]:.12e},{n[2]:.12e},{t[0]:.12e},{t[1]:.12e},{t[2]:.12e}\n")
+        f.write("*STEP\n*STATIC\n*BOUNDARY\nNFIXED,1,3,0.\n")
+        if normal_only is not None:
+            f.write(f"NCONTACT,1,1,{dot(displacement, normal_only):.12e}\n")
+        else:
+            for c in range(3):
+                f.write(f"NCONTACT,{c + 1},{c + 1},{displacement[c]:.12e}\n")
+        f.write("*NODE PRINT, NSET=NCONTACT, TOTALS=ONLY, GLOBAL=YES\nRF\n"
+                "*NODE PRINT, NSET=NTRAINER, GLOBAL=YES\nU\n*END STEP\n")
     run(["ccx", "-i", "job"], work)
     results = read_ccx_results(work)
     if results is None:
@@ -323,8 +387,9 @@ def liver_case():
                 note=f"hook tip at liver vertex {tip} and its one-ring, {INDENT_M * 1e3:g} mm into the surface")
 
 
-def gallbladder_case():
+def gallbladder_case(press=False):
     pts, tris, _ = read_vtk_surface(ROOT / "data/anatomy/gallbladder_1000_surface.vtk")
+    n_trainer = len(pts)
     lpts, _, _ = read_vtk_surface(ROOT / "data/anatomy/liver.vtk")
     near_liver = [min(math.dist(p, q) for q in lpts) < BED_DISTANCE_M for p in pts]
     # Axis: the principal direction of the surface points (power iteration on the covariance).
@@ -353,22 +418,36 @@ def gallbladder_case():
         d = sub(p, pts[grasp])
         return abs(dot(d, along)) <= 0.5 * JAW_LENGTH_M and abs(dot(d, across)) <= 0.5 * JAW_WIDTH_M and dot(d, normal) > -0.004
 
-    flags = []
-    for t in tris:
-        f = set()
-        if all(near_liver[v] for v in t):
-            f.add("fixed")
-        flags.append(f)
-    fixed_vertices = [v for v in range(len(pts)) if near_liver[v]]
-    contact_vertices = [v for v in range(len(pts)) if in_jaw(pts[v])]
-    return dict(name="gallbladder-grasp", source="data/anatomy/gallbladder_1000_surface.vtk", pts=pts, tris=tris,
-                flags=flags, fixed_vertices=fixed_vertices, contact_vertices=contact_vertices, centre=pts[grasp],
-                displacement=tuple(INDENT_M * c for c in normal), youngs_Pa=2.3e3, poisson=0.45, in_jaw=in_jaw,
-                edge_distance=edge_distance,
-                footprint_m=JAW_WIDTH_M, extra={"centre_m": pts[grasp], "jaw_long_axis": along},
-                out=ROOT / "tests/fem/data/gallbladder_grasp_reference.txt",
+    # The jaw's footprint is the exact rectangle, the same at every level: the surface is cut along
+    # its four sides once (level 0), the triangles inside carry "contact" and their children inherit
+    # it, so refinement only resolves the footprint, never redraws it.
+    centre = pts[grasp]
+    patch = lambda p: (abs(dot(sub(p, centre), along)) < 0.5 * JAW_LENGTH_M + 0.010 and
+                       abs(dot(sub(p, centre), across)) < 0.5 * JAW_WIDTH_M + 0.010 and dot(sub(p, centre), normal) > -0.010)
+    flags = [set() for _ in tris]
+    for axis, half in ((along, JAW_LENGTH_M), (along, -JAW_LENGTH_M), (across, JAW_WIDTH_M), (across, -JAW_WIDTH_M)):
+        line = lambda p, axis=axis, half=half: dot(sub(p, centre), axis) - 0.5 * half
+        pts, tris, flags = cut_along(pts, tris, flags, line, patch, JAW_SNAP_M)
+    near_liver += [min(math.dist(p, q) for q in lpts) < BED_DISTANCE_M for p in pts[n_trainer:]]
+    flags = [{"fixed"} if all(near_liver[v] for v in t) else set() for t in tris]
+    for t, f in zip(tris, flags):
+        if in_jaw(tuple(sum(pts[v][c] for v in t) / 3 for c in range(3))):
+            f.add("contact")
+    fixed_vertices = [v for v in range(n_trainer) if near_liver[v]]
+    contact_vertices = [v for v in range(n_trainer) if in_jaw(pts[v])]
+    sign = -1.0 if press else 1.0
+    name = "gallbladder-press" if press else "gallbladder-grasp"
+    load = ("pressed 5 mm in along its normal, frictionless (the normal component prescribed, the tangential free)"
+            if press else f"pulled {INDENT_M * 1e3:g} mm along its normal (all components prescribed)")
+    return dict(name=name, source="data/anatomy/gallbladder_1000_surface.vtk", pts=pts, tris=tris, n_trainer=n_trainer,
+                flags=flags, fixed_vertices=fixed_vertices, contact_vertices=contact_vertices, centre=centre,
+                displacement=tuple(sign * INDENT_M * c for c in normal), normal_only=normal if press else None,
+                youngs_Pa=2.3e3, poisson=0.45, exact_footprint=True, edge_distance=edge_distance,
+                footprint_m=JAW_WIDTH_M, extra={"centre_m": centre, "jaw_long_axis": along},
+                out=ROOT / f"tests/fem/data/gallbladder_{'press' if press else 'grasp'}_reference.txt",
                 note=(f"jaw {JAW_LENGTH_M * 1e3:g} x {JAW_WIDTH_M * 1e3:g} mm centred at vertex {grasp}, long side "
-                      f"({along[0]:.6f} {along[1]:.6f} {along[2]:.6f}), pulled {INDENT_M * 1e3:g} mm along its normal; "
+                      f"({along[0]:.6f} {along[1]:.6f} {along[2]:.6f}), {load}; the surface cut along the jaw's "
+                      f"sides (corners within {JAW_SNAP_M * 1e3:g} mm of a side count as on it); "
                       f"bed: surface within {BED_DISTANCE_M * 1e3:g} mm of a liver vertex"))
 
 
@@ -378,7 +457,7 @@ def solve_level(case, level, work):
     footprints, plus half the triangle's own size so that a large triangle across the edge is
     caught); tets grade from the finest surface size at the contact to 12 mm."""
     pts, tris, flags = case["pts"], case["tris"], case["flags"]
-    n_trainer = len(pts)
+    n_trainer = case.get("n_trainer", len(pts))
     band = 2.0 * case["footprint_m"]
     for _ in range(level):
         def near(corners, band=band):
@@ -387,32 +466,40 @@ def solve_level(case, level, work):
             return min(case["edge_distance"](q) for q in samples) < band + 0.5 * size
         pts, tris, flags = refine(pts, tris, flags, near)
         band *= 0.5
-    if "in_jaw" in case:  # the jaw: refined triangles whose centroid lies in the footprint
-        flags = [f | {"contact"} if case["in_jaw"](tuple(sum(pts[v][c] for v in t) / 3 for c in range(3))) else f
-                 for t, f in zip(tris, flags)]
     kept = read_ccx_results(work) if (work / "volume.msh").exists() else None
     if kept is not None:  # a finished level of an earlier run with the same --keep: resume from it
         nodes, tets = read_msh(work / "volume.msh")
         trainer_nodes = [NodeIndex(nodes)[pts[v]] for v in range(n_trainer)]
         return kept[0], [kept[1][i] for i in trainer_nodes], len(nodes), len(tets)
-    size_near = min(math.dist(pts[t[0]], pts[t[1]]) for t, f in zip(tris, flags) if "contact" in f)
-    nodes, tets = mesh_volume(work, pts, tris, case["centre"], size_near, 0.012, 0.06)
+    # The volume's size at the contact: the footprint's mean edge (not its shortest: the cuts along
+    # the jaw's sides leave a few short edges that would make the whole volume needlessly fine).
+    contact_edges = [math.dist(pts[t[k]], pts[t[(k + 1) % 3]]) for t, f in zip(tris, flags) if "contact" in f
+                     for k in range(3)]
+    size_near = (sum(contact_edges) / len(contact_edges) if case.get("exact_footprint")
+                 else min(math.dist(pts[t[0]], pts[t[1]]) for t, f in zip(tris, flags) if "contact" in f))
+    if (work / "volume.msh").exists():  # meshed already (--mesh-from, or a run stopped in ccx)
+        nodes, tets = read_msh(work / "volume.msh")
+    else:
+        nodes, tets = mesh_volume(work, pts, tris, case["centre"], size_near, 0.012, 0.06,
+                                  hxt=case.get("exact_footprint", False))
     index = NodeIndex(nodes)
     fixed = region_nodes(pts, tris, flags, "fixed", index) | {index[pts[v]] for v in case["fixed_vertices"]}
     contact = region_nodes(pts, tris, flags, "contact", index)
-    if "in_jaw" not in case:
+    if "exact_footprint" not in case:
         contact |= {index[pts[v]] for v in case["contact_vertices"]}
     trainer_nodes = [index[pts[v]] for v in range(n_trainer)]
     force, u = solve_ccx(work, nodes, tets, fixed, contact, case["displacement"], case["youngs_Pa"],
-                         case["poisson"], trainer_nodes)
+                         case["poisson"], trainer_nodes, case.get("normal_only"))
     return force, [u[i] for i in trainer_nodes], len(nodes), len(tets)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--case", default="all", choices=["all", "liver-hook", "gallbladder-grasp"])
+    parser.add_argument("--case", default="all", choices=["all", "liver-hook", "gallbladder-grasp", "gallbladder-press"])
     parser.add_argument("--keep", help="keep the meshes and ccx files under this folder")
     parser.add_argument("--max-level", type=int, default=6)
+    parser.add_argument("--mesh-from", help="with --keep: take each level's volume.msh from this --keep folder of the "
+                        "other gallbladder case (the grasp and the press share their meshes)")
     parser.add_argument("--start-level", type=int, default=0, help="first level to solve (to resume a long run)")
     parser.add_argument("--write-unconverged", action="store_true",
                         help="write the last level even when the force still moved by 1 %% or more (marked in the file)")
@@ -420,15 +507,20 @@ def main():
     for tool in ("gmsh", "ccx"):
         if shutil.which(tool) is None:
             sys.exit(f"{tool} not found: apt-get install calculix-ccx gmsh (tools/convergence/deps.txt)")
-    cases = [liver_case, gallbladder_case]
-    if args.case != "all":
-        cases = [liver_case if args.case == "liver-hook" else gallbladder_case]
+    cases = {"liver-hook": liver_case, "gallbladder-grasp": gallbladder_case,
+             "gallbladder-press": lambda: gallbladder_case(press=True)}
+    cases = list(cases.values()) if args.case == "all" else [cases[args.case]]
     for make in cases:
         case = make()
         history, previous = [], None
         for level in range(args.start_level, args.max_level + 1):
             work = pathlib.Path(args.keep) / f"{case['name']}-{level}" if args.keep else pathlib.Path(tempfile.mkdtemp())
             work.mkdir(parents=True, exist_ok=True)
+            if args.mesh_from and args.keep and not (work / "volume.msh").exists():
+                other = "gallbladder-press" if case["name"] == "gallbladder-grasp" else "gallbladder-grasp"
+                source = pathlib.Path(args.mesh_from) / f"{other}-{level}" / "volume.msh"
+                if source.exists() and (source.parent / "job.dat").exists():  # a finished level's mesh
+                    shutil.copy(source, work / "volume.msh")
             force, u, n_nodes, n_tets = solve_level(case, level, work)
             magnitude = math.sqrt(dot(force, force))
             change = abs(magnitude - previous) / magnitude if previous else float("nan")
