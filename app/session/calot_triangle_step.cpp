@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -119,12 +120,18 @@ void CalotTriangleStep::Step(const physics::DissectionScene& scene, const device
   p_Neck_W_m_ = tubes_.description().p_Neck_W_m + mean;
   tubes_.Step(p_Neck_W_m_);
 
-  // Every tool tip pushes the tubes aside.
-  for (int i = 0; i < 2; ++i) tubes_.PushByTip(scene.tool_tip(i), geometry_.tip_radius_m);
+  // The right hand acts first: its closing jaws take the tube where it lay between them.
+  ActWithRightTool(scene, input, pedal_burns);
+  // A tip pushes the tubes aside, unless its jaws are open (they straddle a tube, not push it).
+  for (int i = 0; i < 2; ++i) {
+    const bool jaws = i == 0 || input.right_tool == physics::InstrumentTool::kClipApplier ||
+                      input.right_tool == physics::InstrumentTool::kScissors;
+    if (jaws && input.instruments[static_cast<std::size_t>(i)].pose.jaw_angle_rad > geometry_.jaw_open_rad) continue;
+    tubes_.PushByTip(scene.tool_tip(i), geometry_.tip_radius_m);
+  }
   // Blunt dissection: the grasper's jaw tips push the fat (open jaws spread it).
   for (const Eigen::Vector3d& jaw_tip : GrasperJawTips(scene, input.instruments[0].pose))
     fat_->Push(jaw_tip, geometry_.tip_radius_m);
-  ActWithRightTool(scene, input, pedal_burns);
   fat_->Update(tubes_);
 
   FillSnapshot(scene);

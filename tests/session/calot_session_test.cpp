@@ -1,0 +1,305 @@
+// Calot's triangle in the dissection session (issue 36): the default scenario with the standard
+// triangle added. The neck follows the gallbladder, the clip applier and the scissors act when
+// their jaws close across a tube, the hook's pedal burns the fat, the metrics judge it all, a
+// clip on the common bile duct ends the case, and the Calot columns reach SessionMetrics.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include "app/render/scene_meshes.h"
+#include "app/scenario/scenario_loader.h"
+#include "app/session/dissection_session.h"
+#include "app/session/dissection_setup.h"
+#include "app/session/session_runner.h"
+#include "device/input/replay_input.h"
+#include "physics/instrument/instrument_pose.h"
+
+namespace vesica::app {
+namespace {
+
+using calot::StructureKind;
+using physics::InstrumentTool;
+
+// data/scenarios/calot-standard.toml's anatomy: the usual triangle on the default scenario's organs.
+constexpr const char* kTriangle = R"(
+[calot_triangle]
+variant = "standard"
+neck_m = [-0.0173, -0.0267, 0.0453]
+
+[[calot_triangle.tubes]]
+name = "cystic duct"
+kind = "cystic_duct"
+points_m = [[-0.0034, -0.0635, 0.0273], [-0.0124, -0.0471, 0.0359], [-0.0173, -0.0267, 0.0453]]
+
+[[calot_triangle.tubes]]
+name = "cystic artery"
+kind = "cystic_artery"
+points_m = [[0.0174, -0.0369, 0.0529], [0.0009, -0.0365, 0.0433], [-0.0207, -0.0239, 0.0422]]
+
+[[calot_triangle.tubes]]
+name = "common hepatic duct"
+kind = "common_hepatic_duct"
+points_m = [[0.0210, -0.0375, 0.0555], [0.0149, -0.0525, 0.0411], [-0.0034, -0.0635, 0.0273]]
+
+[[calot_triangle.tubes]]
+name = "common bile duct"
+kind = "common_bile_duct"
+points_m = [[-0.0034, -0.0635, 0.0273], [-0.0078, -0.0778, 0.0145], [-0.0089, -0.0983, -0.0066]]
+)";
+
+constexpr int kCysticDuct = 0, kArtery = 1, kCommonBileDuct = 3;
+
+// The default scenario with the triangle appended (mesh paths made absolute, as
+// tool_exchange_test.cpp's ScenarioWithHookLine does).
+std::filesystem::path ScenarioWithTriangle() {
+  std::ifstream in(DefaultScenarioPath());
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  const std::filesystem::path dir = DefaultScenarioPath().parent_path();
+  for (std::size_t at = 0; (at = text.find("\"../", at)) != std::string::npos;)
+    text.replace(at + 1, 3, (dir / "..").string() + "/");
+  const std::filesystem::path out = std::filesystem::path(testing::TempDir()) / "calot_session.toml";
+  std::ofstream(out) << text << kTriangle;
+  return out;
+}
+
+class CalotSessionTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    scenario_ = new Scenario(LoadScenario(ScenarioWithTriangle()));
+    model_ = BuildDissectionModelFor(*scenario_, LoadSceneMeshes(*scenario_));
+  }
+  static void TearDownTestSuite() {
+    delete scenario_;
+    model_.reset();
+  }
+
+  static std::unique_ptr<DissectionSession> NewSession() {
+    return std::make_unique<DissectionSession>(model_, DefaultCauteryParams(), CalotSessionSetupFor(*scenario_));
+  }
+
+  // The right hand's pose that puts its tip at `target` (m), jaws at `jaw_rad`.
+  static physics::InstrumentPose RightTipAt(const Eigen::Vector3d& target, double jaw_rad) {
+    const physics::InstrumentMount& mount = model_->instruments[1];
+    physics::InstrumentPose pose = physics::AimAt(
+        mount.p_RemoteCentre_W, target, (target - mount.p_RemoteCentre_W).norm(), mount.reference_direction_W);
+    pose.jaw_angle_rad = jaw_rad;
+    return pose;
+  }
+
+  // The grasper at rest at its port (out of the field), the right tool at its pose.
+  static device::InputFrame Frame(InstrumentTool tool, const physics::InstrumentPose& right, bool pedal = false) {
+    device::InputFrame f;
+    f.right_tool = tool;
+    f.instruments[1].pose = right;
+    f.instruments[1].pedal = pedal;
+    return f;
+  }
+
+  // Brings the open jaws to the tube's point at s (0..1) and closes them there.
+  static void CloseJawsOn(DissectionSession& session, InstrumentTool tool, int tube, double s) {
+    const auto& tubes = *session.calot_tubes();
+    for (int i = 0; i < 2; ++i)
+      session.Step(Frame(tool, RightTipAt(tubes.PositionAt(tube, s * tubes.TubeLength_m(tube)), 0.5)));
+    session.Step(Frame(tool, RightTipAt(tubes.PositionAt(tube, s * tubes.TubeLength_m(tube)), 0.0)));
+  }
+
+  static Scenario* scenario_;
+  static std::shared_ptr<const physics::DissectionModel> model_;
+};
+Scenario* CalotSessionTest::scenario_ = nullptr;
+std::shared_ptr<const physics::DissectionModel> CalotSessionTest::model_;
+
+TEST_F(CalotSessionTest, WithoutATriangleThereIsNoCalotStep) {
+  DissectionSession session(model_, DefaultCauteryParams());
+  session.Step(device::InputFrame{});
+  EXPECT_EQ(session.calot_metrics(), nullptr);
+  EXPECT_EQ(session.calot_tubes(), nullptr);
+  EXPECT_FALSE(session.case_ended());
+  EXPECT_FALSE(session.metrics().calot_step);
+  EXPECT_FALSE(CalotSessionSetupFor(LoadScenario(DefaultScenarioPath())).has_value());
+}
+
+TEST_F(CalotSessionTest, TheNeckFollowsTheGallbladdersNeckNodes) {
+  auto session = NewSession();
+  const CalotTriangleStep& step = *session->calot_step();
+  const Eigen::Vector3d rest_neck = session->calot_tubes()->description().p_Neck_W_m;
+  for (int i = 0; i < 100; ++i) session->Step(device::InputFrame{});  // 0.5 s: the gallbladder settles under gravity
+  // Independently: the mean displacement of the gallbladder nodes within 8 mm of the neck at rest.
+  const physics::Vertices& rest = model_->gallbladder->rest_mesh.vertices;
+  const Eigen::VectorXd& u = session->scene().gallbladder().state().displacement_m;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (Eigen::Index v = 0; v < rest.rows(); ++v)
+    if ((rest.row(v).transpose() - rest_neck).norm() <= CalotToolGeometry{}.neck_radius_m) {
+      mean += u.segment<3>(3 * v);
+      ++n;
+    }
+  ASSERT_GT(n, 0);
+  mean /= n;
+  EXPECT_GT(mean.norm(), 1e-4) << "the gallbladder did not move: nothing to follow";
+  EXPECT_TRUE(step.neck_W_m().isApprox(rest_neck + mean, 1e-12));
+  // The cystic duct's neck end went along (tied by its coupling spring).
+  const auto& tubes = *session->calot_tubes();
+  const Eigen::Vector3d end = tubes.PositionAt(kCysticDuct, tubes.TubeLength_m(kCysticDuct));
+  EXPECT_LT((end - step.neck_W_m()).norm(), 0.5 * mean.norm());
+}
+
+TEST_F(CalotSessionTest, TheClipApplierClosingAcrossTheCysticDuctPlacesAClip) {
+  auto session = NewSession();
+  // Closing across nothing places nothing.
+  const Eigen::Vector3d away = session->calot_tubes()->PositionAt(kCysticDuct, 0.0) + Eigen::Vector3d(0, 0.03, 0);
+  session->Step(Frame(InstrumentTool::kClipApplier, RightTipAt(away, 0.5)));
+  session->Step(Frame(InstrumentTool::kClipApplier, RightTipAt(away, 0.0)));
+  EXPECT_TRUE(session->calot_tubes()->clips().empty());
+  // Closed and moved onto the duct: no closing edge, no clip.
+  session->Step(
+      Frame(InstrumentTool::kClipApplier, RightTipAt(session->calot_tubes()->PositionAt(kCysticDuct, 0.01), 0.0)));
+  EXPECT_TRUE(session->calot_tubes()->clips().empty());
+
+  CloseJawsOn(*session, InstrumentTool::kClipApplier, kCysticDuct, 0.3);
+  const auto& tubes = *session->calot_tubes();
+  ASSERT_EQ(tubes.clips().size(), 1u);
+  EXPECT_EQ(tubes.clips()[0].tube, kCysticDuct);
+  EXPECT_NEAR(tubes.clips()[0].s_m / tubes.TubeLength_m(kCysticDuct), 0.3, 0.05);
+  const calot::CalotSnapshot& snapshot = session->calot_step()->last_snapshot();
+  ASSERT_EQ(snapshot.structures[kCysticDuct].clips_s.size(), 1u);
+  EXPECT_DOUBLE_EQ(snapshot.structures[kCysticDuct].clips_s[0], tubes.clips()[0].s_m / tubes.TubeLength_m(kCysticDuct));
+  EXPECT_EQ(session->calot_metrics()->ClipsOn(StructureKind::kCysticDuct), 1);
+  EXPECT_EQ(session->calot_metrics()->ClipsOn(StructureKind::kCysticArtery), 0);
+  // The clip rides on its material point as the duct moves.
+  for (int i = 0; i < 20; ++i) session->Step(device::InputFrame{});
+  EXPECT_LT((tubes.ClipPosition(0) - tubes.PositionAt(kCysticDuct, tubes.clips()[0].s_m)).norm(), 1e-12);
+  const SessionMetrics m = session->metrics();
+  EXPECT_TRUE(m.calot_step);
+  EXPECT_EQ(m.cystic_duct_clips, 1);
+  EXPECT_FALSE(m.cvs_achieved);
+  EXPECT_FALSE(session->case_ended());
+}
+
+TEST_F(CalotSessionTest, ScissorsCutAndAnUnclippedArteryBleeds) {
+  auto session = NewSession();
+  CloseJawsOn(*session, InstrumentTool::kScissors, kArtery, 0.5);
+  const auto& tubes = *session->calot_tubes();
+  ASSERT_EQ(tubes.cuts().size(), 1u);
+  EXPECT_EQ(tubes.cuts()[0].tube, kArtery);
+  EXPECT_TRUE(tubes.Bleeding());
+  const calot::CalotSnapshot& snapshot = session->calot_step()->last_snapshot();
+  EXPECT_TRUE(snapshot.structures[kArtery].bleeding);
+  ASSERT_EQ(snapshot.structures[kArtery].cuts_s.size(), 1u);
+  EXPECT_EQ(session->calot_metrics()->Count(calot::FindingKind::kBleeding), 1);
+  for (int i = 0; i < 10; ++i) session->Step(device::InputFrame{});
+  EXPECT_EQ(session->metrics().bleeding_events, 1);  // counted once however long it bleeds
+  EXPECT_FALSE(session->metrics().cystic_artery_divided_between_clips);
+}
+
+TEST_F(CalotSessionTest, TheHooksPedalRemovesFatAndNothingElseDoes) {
+  auto session = NewSession();
+  const auto& fat = *session->calot_fat();
+  // A point in the triangle's slab: its first intact cell.
+  int cell = -1;
+  for (std::size_t c = 0; c < fat.cells().size() && cell < 0; ++c)
+    if (fat.cells()[c].in_triangle && fat.cells()[c].anchor_tube < 0) cell = static_cast<int>(c);
+  ASSERT_GE(cell, 0);
+  const Eigen::Vector3d target = fat.cell_positions_m()[static_cast<std::size_t>(cell)];
+  // Pedal up with the hook, pedal down with the scissors: nothing burns.
+  for (int i = 0; i < 40; ++i) session->Step(Frame(InstrumentTool::kCauteryHook, RightTipAt(target, 0), false));
+  for (int i = 0; i < 40; ++i) session->Step(Frame(InstrumentTool::kScissors, RightTipAt(target, 0), true));
+  EXPECT_EQ(fat.BurntFraction(), 0.0);
+  // The hook with its pedal down: the cell (and its neighbours within reach) are burnt.
+  for (int i = 0; i < 200 && fat.cells()[static_cast<std::size_t>(cell)].state == physics::calot::FatCellState::kIntact;
+       ++i)
+    session->Step(Frame(InstrumentTool::kCauteryHook, RightTipAt(target, 0), true));
+  EXPECT_EQ(fat.cells()[static_cast<std::size_t>(cell)].state, physics::calot::FatCellState::kBurnt);
+  EXPECT_GT(fat.TriangleClearedFraction(), 0.0);
+  session->Step(device::InputFrame{});
+  EXPECT_DOUBLE_EQ(session->calot_step()->last_snapshot().fat_removed_fraction, fat.TriangleClearedFraction());
+}
+
+TEST_F(CalotSessionTest, ThreeClipsThenACutBetweenThemDividesTheArteryDry) {
+  auto session = NewSession();
+  // Burn fat off the artery's middle first, as a trainee would: the hook on a cell that hides it
+  // there, pedal down (1.5 s: a 2 mm cell takes about 0.35 s at 30 W, and the hook pushes the
+  // artery and its sleeve as it goes, so this does not bare the artery yet).
+  const auto& tubes = *session->calot_tubes();
+  const auto& fat = *session->calot_fat();
+  const double reach_m = tubes.description().tubes[kArtery].material.outer_radius_m + fat.description().cover_margin_m +
+                         0.5 * fat.description().cell_spacing_m;
+  const auto next_hiding_cell = [&]() -> int {
+    for (std::size_t c = 0; c < fat.cells().size(); ++c) {
+      if (fat.cells()[c].state != physics::calot::FatCellState::kIntact) continue;
+      for (double s = 0.5; s <= 0.6; s += 0.01)
+        if ((fat.cell_positions_m()[c] - tubes.PositionAt(kArtery, s * tubes.TubeLength_m(kArtery))).norm() < reach_m)
+          return static_cast<int>(c);
+    }
+    return -1;
+  };
+  int steps = 0;
+  for (int cell; steps < 300 && (cell = next_hiding_cell()) >= 0; ++steps)
+    session->Step(Frame(InstrumentTool::kCauteryHook,
+                        RightTipAt(fat.cell_positions_m()[static_cast<std::size_t>(cell)], 0), true));
+  EXPECT_EQ(steps, 300);
+  EXPECT_GT(fat.BurntFraction(), 0.0);
+  // Two clips on the patient's side of the planned cut (0.6), one on the gallbladder's, cut between.
+  for (const double s : {0.25, 0.4, 0.85}) CloseJawsOn(*session, InstrumentTool::kClipApplier, kArtery, s);
+  ASSERT_EQ(tubes.clips().size(), 3u);
+  CloseJawsOn(*session, InstrumentTool::kScissors, kArtery, 0.6);
+  ASSERT_EQ(tubes.cuts().size(), 1u);
+  EXPECT_FALSE(tubes.Bleeding());
+  const calot::CalotMetrics& metrics = *session->calot_metrics();
+  EXPECT_TRUE(metrics.AllClipsPlacedCorrectly(StructureKind::kCysticArtery));
+  EXPECT_TRUE(metrics.AllDividedBetweenClips(StructureKind::kCysticArtery));
+  EXPECT_EQ(metrics.Count(calot::FindingKind::kBleeding), 0);
+  EXPECT_EQ(metrics.Count(calot::FindingKind::kClipBeforeCriticalView), 3);  // the view was never reached
+  const SessionMetrics m = session->metrics();
+  EXPECT_EQ(m.cystic_artery_clips, 3);
+  EXPECT_TRUE(m.cystic_artery_clips_correct);
+  EXPECT_TRUE(m.cystic_artery_divided_between_clips);
+  EXPECT_EQ(m.bleeding_events, 0);
+  EXPECT_FALSE(m.calot_passed);  // clipped before the critical view, duct untouched
+}
+
+TEST_F(CalotSessionTest, ClippingTheCommonBileDuctEndsTheCase) {
+  auto session = NewSession();
+  CloseJawsOn(*session, InstrumentTool::kClipApplier, kCommonBileDuct, 0.5);
+  EXPECT_TRUE(session->case_ended());
+  const SessionMetrics m = session->metrics();
+  EXPECT_EQ(m.bile_duct_injuries, 1);
+  EXPECT_FALSE(m.calot_passed);
+  EXPECT_FALSE(m.success);
+  EXPECT_EQ(session->calot_metrics()->Count(calot::FindingKind::kBileDuctInjury), 1);
+}
+
+TEST_F(CalotSessionTest, TheRunnerFinishesTheSessionAtTheBileDuctInjury) {
+  // The same hands as a recording: open jaws over the common bile duct, then closed, then still.
+  auto probe = NewSession();
+  const auto& tubes = *probe->calot_tubes();
+  const Eigen::Vector3d target = tubes.PositionAt(kCommonBileDuct, 0.5 * tubes.TubeLength_m(kCommonBileDuct));
+  device::InputRecording rec;
+  const double h = model_->settings.time_step_s;
+  for (int i = 0; i < 400; ++i) {
+    device::InputFrame f = Frame(InstrumentTool::kClipApplier, RightTipAt(target, i < 2 ? 0.5 : 0.0));
+    f.time_s = i * h;
+    rec.frames.push_back(f);
+  }
+  RunnerOptions options;
+  options.real_time = false;
+  options.calot = CalotSessionSetupFor(*scenario_);
+  SessionRunner runner(model_, DefaultCauteryParams(), std::make_shared<device::ReplayInput>(rec), options);
+  runner.Start();
+  RunnerStatus s;
+  for (int i = 0; i < 6000 && !(s = runner.Status()).finished; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(s.finished) << s.error;
+  EXPECT_TRUE(s.error.empty()) << s.error;
+  EXPECT_TRUE(s.case_ended);
+  EXPECT_LT(s.session_time_s, 10 * h);  // ended at the clip, not at the recording's end
+  ASSERT_TRUE(s.calot_metrics.has_value());
+  EXPECT_TRUE(s.calot_metrics->CaseEnded());
+  EXPECT_EQ(s.metrics.bile_duct_injuries, 1);
+}
+
+}  // namespace
+}  // namespace vesica::app
