@@ -15,8 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "app/render/scene_meshes.h"
 #include "app/render/scope_pose.h"
 #include "app/scenario/scenario_loader.h"
+#include "app/session/dissection_session.h"
+#include "app/session/dissection_setup.h"
 
 namespace vesica::app {
 namespace {
@@ -213,6 +216,31 @@ bool ArteryCrossesInFrontOfTheHepaticDuct(const Scenario& s) {
 TEST(CalotVariantScenarios, TheAnteriorArteryCrossesInFrontOfTheCommonHepaticDuct) {
   EXPECT_TRUE(ArteryCrossesInFrontOfTheHepaticDuct(LoadScenario(kDir / "calot-anterior-artery.toml")));
   EXPECT_FALSE(ArteryCrossesInFrontOfTheHepaticDuct(LoadScenario(kDir / "calot-standard.toml")));
+}
+
+// Each variant runs in a session: the triangle's neck finds its gallbladder nodes, the tubes stay
+// finite while the instruments wait, the fat hides every structure at the start (the critical
+// view is not there to be had), and the session's metrics say it has the Calot step.
+TEST(CalotVariantScenarios, EachRunsInADissectionSessionWithItsFatCovering) {
+  for (const char* file : kVariants) {
+    SCOPED_TRACE(file);
+    const Scenario s = LoadScenario(kDir / file);
+    DissectionSession session(BuildDissectionModelFor(s, LoadSceneMeshes(s)), DefaultCauteryParams(),
+                              CalotSessionSetupFor(s));
+    ASSERT_NE(session.calot_metrics(), nullptr);
+    device::InputFrame frame;
+    for (int i = 0; i < 2; ++i) frame.instruments[i].pose.insertion_m = s.instruments[i].initial_insertion_m;
+    for (int k = 0; k < 40; ++k) session.Step(frame);
+    EXPECT_FALSE(session.case_ended());
+    for (const physics::calot::TubePiece& piece : session.calot_tubes()->pieces())
+      EXPECT_TRUE(piece.rod.positions_m().allFinite());
+    for (const calot::StructureState& st : session.calot_step()->last_snapshot().structures)
+      EXPECT_EQ(st.visible_fraction, 0.0) << st.name;
+    const SessionMetrics m = session.metrics();
+    EXPECT_TRUE(m.calot_step);
+    EXPECT_FALSE(m.cvs_achieved);
+    EXPECT_EQ(m.bile_duct_injuries, 0);
+  }
 }
 
 }  // namespace
