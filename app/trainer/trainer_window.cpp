@@ -19,6 +19,7 @@
 #include <QStatusBar>
 #include <QTimer>
 #include <QWheelEvent>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -92,6 +93,9 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
   session->addAction("&Pause / resume (P)", [this] { runner_->SetPaused(!runner_->Status().paused); });
   session->addAction("&Reset (R)", [this] { ResetSession(); });
   session->addAction("&End session (Enter)", [this] { EndSession(); });
+  QAction* exchange = session->addAction("E&xchange the right hand's instrument (T)", [this] { ExchangeRightTool(); });
+  exchange->setObjectName("exchange_right_tool");
+  exchange->setEnabled(RightPortExchange(scenario).tools().size() > 1);
   open_scenario_action_ = session->addAction("Open &scenario...", [this] {
     const QString file = QFileDialog::getOpenFileName(
         this, "Open a scenario", QString::fromStdString(DefaultScenarioPath().parent_path().string()),
@@ -307,6 +311,15 @@ void TrainerWindow::ResetSession() {
   HideEndOfSessionDocks();
 }
 
+void TrainerWindow::ExchangeRightTool() {
+  if (!live_input_) return;  // a replay or the arms (their handle button) hold the tool
+  right_port_.Next();
+  SendManualPoses();
+  std::string name = physics::ToolKey(right_port_.current());
+  std::replace(name.begin(), name.end(), '_', ' ');
+  statusBar()->showMessage(QString::fromStdString("Right hand: " + name));
+}
+
 void TrainerWindow::HideEndOfSessionDocks() {
   for (const char* name : {"metrics_dock", "calot_debrief_dock"})
     if (auto* dock = findChild<QDockWidget*>(name)) dock->hide();
@@ -504,8 +517,7 @@ bool TrainerWindow::eventFilter(QObject* watched, QEvent* event) {
         return true;
       case Qt::Key_T:  // exchange the right hand's tool through its port
         if (!live_input_) break;
-        right_port_.Next();
-        SendManualPoses();
+        ExchangeRightTool();
         return true;
       case Qt::Key_Plus:
       case Qt::Key_Equal:

@@ -68,6 +68,11 @@ class TrainerWindow : public QMainWindow {
 
   /// Ends the session now (as the End key does).
   void EndSession();
+  /// The right hand's port takes its next instrument (T, Session > Exchange; with the keyboard
+  /// only: the arms' handle button does it for them) and the status line names it.
+  void ExchangeRightTool();
+  /// What the right hand's port holds now (the keyboard's exchange).
+  physics::InstrumentTool right_tool() const { return right_port_.current(); }
   /// Ends the session and stores it before returning (when the window is about to go: another
   /// scenario was opened). Nothing to do when the session has already finished.
   void EndAndStoreSession();

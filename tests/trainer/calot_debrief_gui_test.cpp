@@ -1,14 +1,17 @@
 // The trainer with Calot's triangle (issue 36), driven as a trainee would: a recorded case whose
 // clip applier closes across the common bile duct ends there (the critical error), the debrief
 // opens beside the metrics saying so, and the stored session carries the Calot columns; Enter
-// ends a case with the step and opens the debrief too.
+// ends a case with the step and opens the debrief too; T and the Session menu exchange the right
+// hand's instrument.
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <QAction>
 #include <QDockWidget>
 #include <QLabel>
+#include <QStatusBar>
 #include <QTest>
 #include <filesystem>
 #include <memory>
@@ -143,6 +146,26 @@ TEST_F(CalotDebriefGuiTest, EnterEndsTheCaseWithTheDebrief) {
   // A new session hides the last one's debrief.
   QTest::keyClick(gl, Qt::Key_R);
   EXPECT_FALSE(DebriefShown(*w));
+}
+
+TEST_F(CalotDebriefGuiTest, TAndTheMenuExchangeTheRightHandsInstrument) {
+  TrainerOptions options;
+  options.trainee_id = "resident-exchange";
+  auto w = MakeWindow(options);
+  QWidget* gl = w->findChild<QVTKOpenGLNativeWidget*>();
+  QTest::qWait(200);
+  EXPECT_EQ(w->right_tool(), physics::InstrumentTool::kCauteryHook);
+  QTest::keyClick(gl, Qt::Key_T);
+  EXPECT_EQ(w->right_tool(), physics::InstrumentTool::kClipApplier);
+  EXPECT_EQ(w->statusBar()->currentMessage().toStdString(), "Right hand: clip applier");
+  auto* exchange = w->findChild<QAction*>("exchange_right_tool");
+  ASSERT_NE(exchange, nullptr);
+  ASSERT_TRUE(exchange->isEnabled());
+  exchange->trigger();
+  EXPECT_EQ(w->right_tool(), physics::InstrumentTool::kScissors);
+  EXPECT_EQ(w->statusBar()->currentMessage().toStdString(), "Right hand: scissors");
+  exchange->trigger();
+  EXPECT_EQ(w->right_tool(), physics::InstrumentTool::kCauteryHook);
 }
 
 }  // namespace
