@@ -74,6 +74,7 @@ struct LaparoscopeView::Impl {
     for (const auto& instrument : instruments)
       casters.insert(casters.end(), instrument.shadow_casters().begin(), instrument.shadow_casters().end());
     for (vtkActor* organ : shadow_receivers) SetInstrumentShadows(organ, casters, light_D, camera, shadows);
+    membrane.SortBackToFront(eye);
   }
   static void BeforeRender(vtkObject*, unsigned long, void* impl, void*) {
     static_cast<Impl*>(impl)->PlaceLightAndShadows();
@@ -117,11 +118,13 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
   for (vtkActor* organ : impl_->shadow_receivers) ReceiveInstrumentShadows(organ);
   r.AddActor(impl_->membrane.actor());
   r.AddActor(impl_->smoke.actor());
-  // Exact translucency (membrane over organs, overlapping smoke puffs); needs multisampling off
-  // on the window (see RenderToPng and the trainer window).
-  r.SetUseDepthPeeling(1);
-  r.SetMaximumNumberOfPeels(6);
-  r.SetOcclusionRatio(0.0);
+  // Translucency by plain alpha blending, in the order drawn (membrane, then smoke), without
+  // depth peeling: under llvmpipe the peels (up to 6, each a geometry pass, full-window blends and
+  // a stall on an occlusion query) were half of the main thread's frame. The picture is the same
+  // where it matters: the membrane is sorted back to front before each render, and the smoke
+  // puffs all have one colour, so their order does not change what they composite to. (Smoke
+  // behind the membrane is drawn over it: a difference of at most alpha_m x alpha_s x colour.)
+  r.SetUseDepthPeeling(0);
 
   const auto& scope = scenario.laparoscope;
   for (const auto& config : scenario.instruments) {

@@ -9,7 +9,9 @@
 #include <vtkProperty.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "app/render/burn_colours.h"
 #include "app/render/display_frame.h"
@@ -42,26 +44,54 @@ void MembraneSheet::Update(const physics::Vertices& vertices, const physics::Tri
   for (Eigen::Index v = 0; v < vertices.rows(); ++v) points->SetPoint(v, ToDisplay(vertices.row(v).transpose()).data());
   // Removed triangles are left out of the cells rather than drawn with alpha 0, so a cut
   // membrane leaves exactly the picture without it.
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
-  colours->SetName("colour");
-  colours->SetNumberOfComponents(4);
+  cells_.clear();
+  rgba_.clear();
+  centroids_D_.clear();
   for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
     const float o = opacity.empty() ? 1.0f : Unit(opacity[f]);
     const auto alpha = static_cast<unsigned char>(std::lround(255.0 * kMembraneAlpha * o));
     if (alpha == 0) continue;
-    const vtkIdType ids[3] = {triangles(f, 0), triangles(f, 2), triangles(f, 1)};  // mirrored: reversed
-    cells->InsertNextCell(3, ids);
+    cells_.push_back({triangles(f, 0), triangles(f, 2), triangles(f, 1)});  // mirrored: reversed
     const auto c = BurnedColour(kMembraneRgb, 1.0, burn.empty() ? 0.0f : burn[f]);
-    const unsigned char rgba[4] = {c[0], c[1], c[2], alpha};
-    colours->InsertNextTypedTuple(rgba);
+    rgba_.push_back({c[0], c[1], c[2], alpha});
+    Eigen::Vector3d centroid_D = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) centroid_D += ToDisplay(vertices.row(triangles(f, k)).transpose());
+    centroids_D_.push_back(centroid_D / 3.0);
   }
+  order_.resize(cells_.size());
+  std::iota(order_.begin(), order_.end(), std::size_t{0});
   poly_->Initialize();
   poly_->SetPoints(points);
+  WriteCells();
+  actor_->SetVisibility(!cells_.empty());
+}
+
+void MembraneSheet::SortBackToFront(const Eigen::Vector3d& eye_D) {
+  if (cells_.empty()) return;
+  scratch_order_.resize(cells_.size());
+  std::iota(scratch_order_.begin(), scratch_order_.end(), std::size_t{0});
+  std::vector<double> distance2(cells_.size());
+  for (std::size_t i = 0; i < cells_.size(); ++i) distance2[i] = (centroids_D_[i] - eye_D).squaredNorm();
+  std::stable_sort(scratch_order_.begin(), scratch_order_.end(),
+                   [&](std::size_t a, std::size_t b) { return distance2[a] > distance2[b]; });
+  if (scratch_order_ == order_) return;  // unchanged: nothing to upload
+  order_.swap(scratch_order_);
+  WriteCells();
+}
+
+void MembraneSheet::WriteCells() {
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  colours->SetName("colour");
+  colours->SetNumberOfComponents(4);
+  colours->SetNumberOfTuples(static_cast<vtkIdType>(order_.size()));
+  for (std::size_t i = 0; i < order_.size(); ++i) {
+    cells->InsertNextCell(3, cells_[order_[i]].data());
+    colours->SetTypedTuple(static_cast<vtkIdType>(i), rgba_[order_[i]].data());
+  }
   poly_->SetPolys(cells);
   poly_->GetCellData()->SetScalars(colours);
   poly_->Modified();
-  actor_->SetVisibility(cells->GetNumberOfCells() > 0);
 }
 
 }  // namespace vesica::app
