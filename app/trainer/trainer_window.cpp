@@ -84,7 +84,9 @@ TrainerWindow::TrainerWindow(const Scenario& scenario, std::unique_ptr<Laparosco
     auto* debrief_dock = new QDockWidget("Calot's triangle: debrief", this);
     debrief_dock->setObjectName("calot_debrief_dock");
     debrief_dock->setWidget(calot_debrief_);
-    addDockWidget(Qt::LeftDockWidgetArea, debrief_dock);
+    // A tab beside the metrics, raised when the case ends: the view keeps its width.
+    addDockWidget(Qt::RightDockWidgetArea, debrief_dock);
+    tabifyDockWidget(dock, debrief_dock);
     debrief_dock->hide();
     connect(calot_debrief_->CloseButton(), &QPushButton::clicked, debrief_dock, &QDockWidget::hide);
   }

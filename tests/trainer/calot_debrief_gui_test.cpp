@@ -13,6 +13,7 @@
 #include <QLabel>
 #include <QStatusBar>
 #include <QTest>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -111,6 +112,8 @@ TEST_F(CalotDebriefGuiTest, ClipOnTheCommonBileDuctEndsTheCaseWithTheDebrief) {
 
   const std::string text = w->calot_debrief()->AllText().toStdString();
   std::printf("%s\n", text.c_str());
+  // VESICA_CALOT_GUI_PNG=file.png saves the window with its debrief, to look at.
+  if (const char* png = std::getenv("VESICA_CALOT_GUI_PNG")) w->grab().save(png);
   EXPECT_EQ(w->calot_debrief()->Outcome()->text().toStdString(), "Failed: bile duct injury");
   EXPECT_NE(text.find("Clip placed on the common bile duct at 0.5"), std::string::npos) << text;
   EXPECT_NE(text.find("before the critical view of safety: bile duct injury, the case ends"), std::string::npos)
