@@ -3,8 +3,7 @@
 // (shaft, jaws, hook) and every organ fragment whose ray to the scope's light passes through one
 // is darkened, in the fragment shader. Exact per pixel at the cost of a few dot products per
 // fragment and capsule, with a soft edge that widens with the distance from the instrument (the
-// light's fibre ring is not a point). No shadow map, no extra render pass: the translucent
-// membrane and smoke keep the renderer's depth peeling.
+// light's fibre ring is not a point). No shadow map, no extra render pass.
 
 #include <Eigen/Core>
 #include <vector>
