@@ -1,6 +1,7 @@
 #include "app/render/instrument_actors.h"
 
 #include <vtkActor.h>
+#include <vtkCubeSource.h>
 #include <vtkLineSource.h>
 #include <vtkMatrix4x4.h>
 #include <vtkPolyData.h>
@@ -164,6 +165,56 @@ InstrumentActors::InstrumentActors(const InstrumentConfig& config, const Eigen::
   Emissive(glow_actor_, kCauteryGlowRgb);
   glow_actor_->VisibilityOff();
   actors_ = {shaft_, sleeve_, stem_, foot_, glow_actor_};
+  BuildExchangeTools();
+}
+
+void InstrumentActors::BuildExchangeTools() {
+  const double r = config_.shaft_radius_m;
+  // The clip applier: slotted jaws (the clip rides in the slot), a little slimmer than a grasper's.
+  GrasperJawShape applier;
+  applier.length_m = kClipApplierJaw_m;
+  applier.width_m = 1.3 * r;
+  applier.thickness_m = 0.5 * r;
+  applier.window_length_m = 0.8 * applier.length_m;
+  applier.window_width_m = 0.25 * applier.width_m;
+  const vtkSmartPointer<vtkPolyData> jaw = MakeGrasperJaw(applier);
+  applier_a_ = Solid(jaw);
+  applier_b_ = Solid(jaw);
+  Steel(applier_a_);
+  Steel(applier_b_);
+  // A closed medium titanium clip: 9 mm long, 1 mm square, along its own x.
+  auto clip = vtkSmartPointer<vtkCubeSource>::New();
+  clip->SetXLength(0.009);
+  clip->SetYLength(0.001);
+  clip->SetZLength(0.001);
+  clip->Update();
+  loaded_clip_ = Solid(clip->GetOutput());
+  Steel(loaded_clip_);
+  // Scissors: two slender blades from the hinge (x), the cutting edge at y = 0.
+  auto blade = vtkSmartPointer<vtkCubeSource>::New();
+  blade->SetBounds(0, kScissorBlade_m, 0, 0.35 * r, -0.4 * r, 0.4 * r);
+  blade->Update();
+  blade_a_ = Solid(blade->GetOutput());
+  blade_b_ = Solid(blade->GetOutput());
+  Steel(blade_a_);
+  Steel(blade_b_);
+  for (const auto& a : {applier_a_, applier_b_, loaded_clip_, blade_a_, blade_b_}) {
+    a->VisibilityOff();
+    actors_.push_back(a);
+  }
+}
+
+void InstrumentActors::PlaceJaws(vtkActor* a, vtkActor* b, const Eigen::Vector3d& hinge, const Eigen::Vector3d& d,
+                                 const Eigen::Vector3d& side, double jaw_angle_rad, double length_m, double width_m) {
+  const double half = 0.5 * std::max(jaw_angle_rad, 0.0);
+  for (const int sign : {+1, -1}) {
+    const Eigen::Vector3d along = std::cos(half) * d + sign * std::sin(half) * side;
+    const Eigen::Vector3d back = -std::sin(half) * d * sign + std::cos(half) * side;  // away from the other jaw
+    const Eigen::Vector3d x_D = ToDisplay(along), y_D = ToDisplay(sign * back);
+    Place(sign > 0 ? a : b, ToDisplay(hinge), x_D, y_D, x_D.cross(y_D));
+    casters_.push_back({ToDisplay(hinge + 0.15 * length_m * along), ToDisplay(hinge + 0.9 * length_m * along),
+                        0.5 * width_m});
+  }
 }
 
 void InstrumentActors::Update(const InstrumentFrame& frame) {
@@ -173,7 +224,12 @@ void InstrumentActors::Update(const InstrumentFrame& frame) {
   // The drawn shaft stops short of it by the jaw or hook stem length.
   const Eigen::Vector3d tip = remote_centre_ + (pose.insertion_m - std::max(frame.past_contact_m, 0.0)) * d;
   const bool grasper = config_.kind == InstrumentKind::kGrasper;
-  const double head_m = grasper ? jaw_shape_.length_m : kHookStem_m;
+  // The right hand's port holds what the frame says (a grasper there would be a bad frame).
+  const InstrumentKind tool = !grasper && physics::IsRightHandTool(frame.tool) ? frame.tool : config_.kind;
+  const double head_m = grasper                                ? jaw_shape_.length_m
+                        : tool == InstrumentKind::kClipApplier ? kClipApplierJaw_m
+                        : tool == InstrumentKind::kScissors    ? kScissorBlade_m
+                                                               : kHookStem_m;
   const Eigen::Vector3d hinge = tip - head_m * d;
   const Eigen::Vector3d outside = remote_centre_ - (config_.shaft_length_m - pose.insertion_m) * d;
   shaft_line_->SetPoint1(ToDisplay(outside).data());
@@ -202,6 +258,26 @@ void InstrumentActors::Update(const InstrumentFrame& frame) {
         Steel(jaw);
       casters_.push_back({ToDisplay(hinge + 0.15 * jaw_shape_.length_m * along),
                           ToDisplay(hinge + 0.9 * jaw_shape_.length_m * along), 0.5 * jaw_shape_.width_m});
+    }
+    return;
+  }
+  const bool hook = tool == InstrumentKind::kCauteryHook;
+  for (vtkActor* a : {sleeve_.Get(), stem_.Get(), foot_.Get()}) a->SetVisibility(hook);
+  applier_a_->SetVisibility(tool == InstrumentKind::kClipApplier);
+  applier_b_->SetVisibility(tool == InstrumentKind::kClipApplier);
+  blade_a_->SetVisibility(tool == InstrumentKind::kScissors);
+  blade_b_->SetVisibility(tool == InstrumentKind::kScissors);
+  // A clip is loaded between the open jaws; closed, it has been fired (or the jaws are empty).
+  loaded_clip_->SetVisibility(tool == InstrumentKind::kClipApplier && pose.jaw_angle_rad > 0.05);
+  if (!hook) {
+    glow_actor_->VisibilityOff();
+    if (tool == InstrumentKind::kClipApplier) {
+      PlaceJaws(applier_a_, applier_b_, hinge, d, side, pose.jaw_angle_rad, kClipApplierJaw_m, 1.3 * r);
+      const Eigen::Vector3d centre = hinge + 0.6 * kClipApplierJaw_m * d;
+      const Eigen::Vector3d x_D = ToDisplay(side), y_D = ToDisplay(d);  // across the opening
+      Place(loaded_clip_, ToDisplay(centre), x_D, y_D, x_D.cross(y_D));
+    } else {
+      PlaceJaws(blade_a_, blade_b_, hinge, d, side, pose.jaw_angle_rad, kScissorBlade_m, 0.8 * r);
     }
     return;
   }

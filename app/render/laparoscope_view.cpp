@@ -16,6 +16,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "app/render/calot_actors.h"
 #include "app/render/context_organs.h"
 #include "app/render/display_frame.h"
 #include "app/render/field_status_overlay.h"
@@ -48,6 +49,7 @@ struct LaparoscopeView::Impl {
   MembraneSheet membrane;
   SmokeSprites smoke;
   std::vector<InstrumentActors> instruments;
+  std::unique_ptr<CalotActors> calot;  // the scenario has Calot's triangle
   std::optional<FieldStatusOverlay> status;
   std::vector<physics::InstrumentPose> poses;
   RenderFrameSizes sizes;
@@ -114,6 +116,10 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
   for (const auto& organ : MakeContextOrganActors(scenario.context_organs, pbr)) {
     r.AddActor(organ);
     impl_->shadow_receivers.push_back(organ);
+  }
+  if (scenario.calot_triangle) {  // the triangle's tubes and fat, drawn from each frame
+    impl_->calot = std::make_unique<CalotActors>(pbr);
+    for (vtkActor* a : impl_->calot->actors()) r.AddActor(a);
   }
   for (vtkActor* organ : impl_->shadow_receivers) ReceiveInstrumentShadows(organ);
   r.AddActor(impl_->membrane.actor());
@@ -203,6 +209,7 @@ void LaparoscopeView::Update(const RenderFrame& frame) {
   m.gallbladder->SetBurn(frame.gallbladder_burn);
   m.membrane.Update(frame.membrane_vertices, frame.membrane_triangles, frame.membrane_opacity, frame.membrane_burn);
   m.smoke.Update(frame.smoke);
+  if (m.calot) m.calot->Update(frame.calot);
   for (std::size_t i = 0; i < frame.instruments.size(); ++i) {
     m.instruments[i].Update(frame.instruments[i]);
     m.poses[i] = frame.instruments[i].pose;

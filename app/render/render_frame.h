@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "app/render/calot_drawing.h"
 #include "physics/instrument/instrument_pose.h"
+#include "physics/instrument/instrument_tool.h"
 #include "physics/mesh/mesh_types.h"
 
 namespace vesica::app {
@@ -29,6 +31,8 @@ struct InstrumentFrame {
   /// How far the commanded tip lies beyond the first surface its shaft meets (>= 0): the tool is
   /// drawn that much short of pose.insertion_m, never through tissue, and the field says so.
   double past_contact_m = 0;
+  /// What the port holds: the right hand's exchanges its hook for the clip applier or scissors.
+  physics::InstrumentTool tool = physics::InstrumentTool::kGrasper;
 };
 
 /// Sizes below are checked by ValidateRenderFrame; "empty" entries mean "as at rest / untouched".
@@ -46,6 +50,7 @@ struct RenderFrame {
   /// One line per haptic arm for the field's status strip ("left arm ok", "right arm FAULT
   /// overcurrent"); empty when no arm drives the session (keyboard, replay).
   std::vector<std::string> arm_status;
+  CalotDrawing calot;  ///< Calot's triangle; empty when the scenario has none
 };
 
 /// The scene sizes a frame must match.
