@@ -83,6 +83,11 @@ CalotTriangleStep::CalotTriangleStep(const CalotSessionSetup& setup, const physi
   neck_nodes_ = NeckNodes(scene.model().gallbladder->rest_mesh.vertices, neck, geometry_.neck_radius_m);
   p_Neck_W_m_ = neck;
   lower_third_springs_ = LowerThirdSprings(scene.model(), neck);
+  liver_surface_ = organs_.AddSurface(scene.model().liver->rest_surface);
+  gallbladder_surface_ = organs_.AddSurface(scene.model().gallbladder_boundary.surface);
+  seen_fraction_.assign(tubes_.description().tubes.size(), 0.0);
+  if (geometry_.visibility_period_steps < 1)
+    throw std::invalid_argument("Calot's triangle: visibility_period_steps must be >= 1");
   if (!(setup_.camera.vertical_view_angle_rad > 0 && setup_.camera.vertical_view_angle_rad < std::numbers::pi) ||
       !(setup_.camera.aspect > 0))
     throw std::invalid_argument("Calot's triangle: the camera's view angle must be in (0, pi) and its aspect > 0");
@@ -134,6 +139,7 @@ void CalotTriangleStep::Step(const physics::DissectionScene& scene, const device
     fat_->Push(jaw_tip, geometry_.tip_radius_m);
   fat_->Update(tubes_);
 
+  ++steps_;
   FillSnapshot(scene);
   if (!assessment_stopped_) {
     try {
@@ -178,9 +184,13 @@ void CalotTriangleStep::ActWithRightTool(const physics::DissectionScene& scene, 
   }
 }
 
-double CalotTriangleStep::InViewFraction(int tube) const {
-  // Samples along the centreline inside the camera's frustum. Occlusion by the organs is not
-  // tested (a ray test against the liver and gallbladder, as tests/field/scope_rays.h does, is left).
+double CalotTriangleStep::SeenFraction(const physics::DissectionScene& scene, int tube) {
+  if (steps_ % geometry_.visibility_period_steps != 1 && geometry_.visibility_period_steps > 1)
+    return seen_fraction_[static_cast<std::size_t>(tube)];
+  if (tube == 0) {  // once per refresh: the organs where they are now
+    organs_.UpdateVertices(liver_surface_, scene.liver_positions());
+    organs_.UpdateVertices(gallbladder_surface_, scene.gallbladder_surface_positions());
+  }
   constexpr int kSamples = 24;
   const CalotCamera& c = setup_.camera;
   const Eigen::Vector3d right = c.forward_W.cross(c.up_W).normalized();
@@ -189,12 +199,16 @@ double CalotTriangleStep::InViewFraction(int tube) const {
   const double length_m = tubes_.TubeLength_m(tube);
   int seen = 0;
   for (int k = 0; k < kSamples; ++k) {
-    const Eigen::Vector3d d = tubes_.PositionAt(tube, length_m * (k + 0.5) / kSamples) - c.p_Eye_W_m;
+    const Eigen::Vector3d p = tubes_.PositionAt(tube, length_m * (k + 0.5) / kSamples);
+    const Eigen::Vector3d d = p - c.p_Eye_W_m;
     const double depth = d.dot(c.forward_W);
-    if (depth <= 0) continue;
-    if (std::abs(d.dot(c.up_W)) <= tan_v * depth && std::abs(d.dot(right)) <= tan_h * depth) ++seen;
+    if (depth <= 0 || std::abs(d.dot(c.up_W)) > tan_v * depth || std::abs(d.dot(right)) > tan_h * depth) continue;
+    const double distance_m = d.norm();
+    const auto hit = organs_.FirstHit(physics::ToolSegment{c.p_Eye_W_m, p});
+    if (hit && hit->distance < distance_m - geometry_.occlusion_margin_m) continue;  // behind an organ
+    ++seen;
   }
-  return static_cast<double>(seen) / kSamples;
+  return seen_fraction_[static_cast<std::size_t>(tube)] = static_cast<double>(seen) / kSamples;
 }
 
 double CalotTriangleStep::LowerThirdSeparatedFraction(const physics::DissectionScene& scene) const {
@@ -228,7 +242,7 @@ void CalotTriangleStep::FillSnapshot(const physics::DissectionScene& scene) {
       (leak.fluid == physics::calot::Fluid::kBlood ? state.bleeding : state.bile_leaking) = true;
     }
     state.enters_gallbladder = calot::IsCysticStructure(state.kind);
-    state.visible_fraction = std::clamp(fat_->UncoveredFraction(t) * InViewFraction(t), 0.0, 1.0);
+    state.visible_fraction = std::clamp(fat_->UncoveredFraction(t) * SeenFraction(scene, t), 0.0, 1.0);
   }
   snapshot_.fat_removed_fraction = std::clamp(fat_->TriangleClearedFraction(), 0.0, 1.0);
   snapshot_.lower_third_separated_fraction = LowerThirdSeparatedFraction(scene);

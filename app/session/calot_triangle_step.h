@@ -16,6 +16,7 @@
 #include "device/input/input_frame.h"
 #include "physics/calot/fat_layer.h"
 #include "physics/calot/triangle_structures.h"
+#include "physics/collision/surface_ray_caster.h"
 #include "physics/scene/dissection_scene.h"
 
 namespace vesica::app {
@@ -43,7 +44,12 @@ struct CalotToolGeometry {
   double tip_radius_m = 0.0025;       ///< a 5 mm instrument's tip, pushing tubes and fat
   double hook_burn_radius_m = 0.002;  ///< fat cells within this of the hook's tip share its energy
   double hook_power_W = 30.0;         ///< coagulation power of the hook's pedal
-  double neck_radius_m = 0.008;       ///< gallbladder nodes within this of the neck at rest move it
+  double neck_radius_m = 0.008;
+  /// What the camera sees of the tubes (rays past the liver and the gallbladder) is refreshed
+  /// every this many steps (20 Hz at 200 Hz physics), >= 1.
+  int visibility_period_steps = 10;
+  double occlusion_margin_m = 0.001;  ///< a surface this near the tube's point does not hide it       ///< gallbladder
+                                      ///< nodes within this of the neck at rest move it
 };
 
 class CalotTriangleStep {
@@ -63,6 +69,8 @@ class CalotTriangleStep {
   const app::calot::CalotMetrics& metrics() const { return metrics_; }
   const app::calot::CalotSnapshot& last_snapshot() const { return snapshot_; }
   bool case_ended() const { return metrics_.CaseEnded(); }
+  /// The fraction of the tube's centreline the camera sees, fat aside (at the last refresh).
+  double seen_fraction(int tube) const { return seen_fraction_.at(static_cast<std::size_t>(tube)); }
   /// Where the neck is now (the mean of its gallbladder nodes' displacement added to the rest).
   const Eigen::Vector3d& neck_W_m() const { return p_Neck_W_m_; }
   /// The jaws' segment of the right hand's instrument: from jaw_length_m back along the shaft to its tip.
@@ -75,7 +83,9 @@ class CalotTriangleStep {
  private:
   void ActWithRightTool(const physics::DissectionScene& scene, const device::InputFrame& input, bool pedal_burns);
   void FillSnapshot(const physics::DissectionScene& scene);
-  double InViewFraction(int tube) const;
+  /// Fraction of the tube's centreline samples in the camera's frustum and not behind the
+  /// liver or the gallbladder (refreshed every visibility_period_steps).
+  double SeenFraction(const physics::DissectionScene& scene, int tube);
   double LowerThirdSeparatedFraction(const physics::DissectionScene& scene) const;
 
   CalotSessionSetup setup_;
@@ -86,7 +96,11 @@ class CalotTriangleStep {
   std::vector<int> neck_nodes_;  // gallbladder FEM nodes near the neck at rest
   Eigen::Vector3d neck_rest_mean_m_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d p_Neck_W_m_ = Eigen::Vector3d::Zero();
-  std::vector<int> lower_third_springs_;  // connective tissue springs whose gallbladder end is near the neck
+  std::vector<int> lower_third_springs_;
+  physics::SurfaceRayCaster organs_;
+  int liver_surface_ = -1, gallbladder_surface_ = -1;
+  std::vector<double> seen_fraction_;  // per tube, at the last refresh
+  long steps_ = 0;                     // connective tissue springs whose gallbladder end is near the neck
   bool right_jaw_was_open_ = false;
   bool assessment_stopped_ = false;
   std::vector<app::calot::CalotEvent> pending_events_;

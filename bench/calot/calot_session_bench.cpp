@@ -94,20 +94,23 @@ void BM_SessionStepWithTriangle(benchmark::State& state) {
 }
 BENCHMARK(BM_SessionStepWithTriangle)->Unit(benchmark::kMillisecond)->Iterations(400);
 
-// The triangle's share alone: CalotTriangleStep::Step on a session's scene.
+// The triangle's share alone: CalotTriangleStep::Step on a session's scene; the argument is the
+// visibility's refresh period in steps (1: every step, the refreshing step's cost).
 void BM_CalotTriangleStepAlone(benchmark::State& state) {
   const Setup& s = TheSetup();
   DissectionSession session(s.model, DefaultCauteryParams(), CalotSessionSetupFor(s.scenario));
   const device::InputFrame frame = HookOnTheFat(session, *s.model);
   session.Step(frame);
-  CalotTriangleStep step(*CalotSessionSetupFor(s.scenario), session.scene());
+  CalotToolGeometry geometry;
+  geometry.visibility_period_steps = static_cast<int>(state.range(0));
+  CalotTriangleStep step(*CalotSessionSetupFor(s.scenario), session.scene(), geometry);
   for (auto _ : state) {
     step.Step(session.scene(), frame, true);
     benchmark::DoNotOptimize(step.last_snapshot().fat_removed_fraction);
   }
   state.counters["fat_burnt"] = step.fat().BurntFraction();
 }
-BENCHMARK(BM_CalotTriangleStepAlone)->Unit(benchmark::kMicrosecond)->Iterations(2000);
+BENCHMARK(BM_CalotTriangleStepAlone)->Arg(10)->Arg(1)->Unit(benchmark::kMicrosecond)->Iterations(2000);
 
 }  // namespace
 }  // namespace vesica::app

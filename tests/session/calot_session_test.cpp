@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <chrono>
 #include <fstream>
 #include <thread>
@@ -145,6 +146,38 @@ TEST_F(CalotSessionTest, TheNeckFollowsTheGallbladdersNeckNodes) {
   const auto& tubes = *session->calot_tubes();
   const Eigen::Vector3d end = tubes.PositionAt(kCysticDuct, tubes.TubeLength_m(kCysticDuct));
   EXPECT_LT((end - step.neck_W_m()).norm(), 0.5 * mean.norm());
+}
+
+TEST_F(CalotSessionTest, TheCameraSeesTheTubesButTheFatHidesThem) {
+  auto session = NewSession();
+  session->Step(device::InputFrame{});
+  const CalotTriangleStep& step = *session->calot_step();
+  // The standard scenario's scope looks into the triangle: most of the cystic structures are in
+  // its view and not behind the liver or the gallbladder; the fat still hides every tube.
+  EXPECT_GT(step.seen_fraction(kCysticDuct), 0.5);
+  EXPECT_GT(step.seen_fraction(kArtery), 0.5);
+  for (const calot::StructureState& s : step.last_snapshot().structures) EXPECT_EQ(s.visible_fraction, 0.0) << s.name;
+  // A camera turned away sees nothing of them.
+  CalotSessionSetup away = *CalotSessionSetupFor(*scenario_);
+  away.camera.forward_W = -away.camera.forward_W;
+  CalotTriangleStep turned(away, session->scene());
+  turned.Step(session->scene(), device::InputFrame{}, false);
+  for (int t = 0; t < 4; ++t) EXPECT_EQ(turned.seen_fraction(t), 0.0);
+  // Seen from beyond the liver (the eye on the line from the duct through the liver's centroid,
+  // outside it): the liver hides the duct.
+  const auto& tubes = *session->calot_tubes();
+  const Eigen::Vector3d duct = tubes.PositionAt(kCysticDuct, 0.5 * tubes.TubeLength_m(kCysticDuct));
+  const physics::Vertices& liver = session->scene().liver_positions();
+  const Eigen::Vector3d centroid = liver.colwise().mean().transpose();
+  const double extent_m = (liver.rowwise() - centroid.transpose()).rowwise().norm().maxCoeff();
+  CalotSessionSetup beyond = *CalotSessionSetupFor(*scenario_);
+  beyond.camera.forward_W = (duct - centroid).normalized();
+  beyond.camera.p_Eye_W_m = centroid - (extent_m + 0.02) * beyond.camera.forward_W;
+  beyond.camera.up_W = beyond.camera.forward_W.cross(Eigen::Vector3d::UnitX()).normalized();
+  CalotTriangleStep beyond_step(beyond, session->scene());
+  beyond_step.Step(session->scene(), device::InputFrame{}, false);
+  // The duct's middle is straight ahead, so only the liver can hide it.
+  EXPECT_LT(beyond_step.seen_fraction(kCysticDuct), 0.1);
 }
 
 TEST_F(CalotSessionTest, TheClipApplierClosingAcrossTheCysticDuctPlacesAClip) {
