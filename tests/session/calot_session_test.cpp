@@ -17,6 +17,7 @@
 #include "app/session/session_runner.h"
 #include "device/input/replay_input.h"
 #include "physics/instrument/instrument_pose.h"
+#include "physics/tissue/connective_tissue.h"
 
 namespace vesica::app {
 namespace {
@@ -178,6 +179,36 @@ TEST_F(CalotSessionTest, TheCameraSeesTheTubesButTheFatHidesThem) {
   beyond_step.Step(session->scene(), device::InputFrame{}, false);
   // The duct's middle is straight ahead, so only the liver can hide it.
   EXPECT_LT(beyond_step.seen_fraction(kCysticDuct), 0.1);
+}
+
+TEST_F(CalotSessionTest, TheLowerThirdIsTheCutShareOfTheSpringsNearTheNeck) {
+  physics::DissectionScene scene(model_);
+  CalotTriangleStep step(*CalotSessionSetupFor(*scenario_), scene);
+  // Independently: a spring's gallbladder end (its grown-from vertex, at rest) in the third of the
+  // gallbladder's extent along neck -> centroid that is nearest the neck.
+  const physics::Vertices& rest = model_->gallbladder->rest_mesh.vertices;
+  const Eigen::Vector3d neck = step.tubes().description().p_Neck_W_m;
+  const Eigen::Vector3d axis = (rest.colwise().mean().transpose() - neck).normalized();
+  const Eigen::VectorXd t = (rest.rowwise() - neck.transpose()) * axis;
+  const double third = t.minCoeff() + (t.maxCoeff() - t.minCoeff()) / 3.0;
+  std::vector<int> lower, upper;
+  for (std::size_t sp = 0; sp < model_->tissue.springs.size(); ++sp) {
+    const physics::TissueSpring& spring = model_->tissue.springs[sp];
+    const Eigen::Vector3d end = physics::GallbladderEnd(spring, rest, model_->gallbladder->rest_mesh.tets);
+    ((end - neck).dot(axis) <= third ? lower : upper).push_back(static_cast<int>(sp));
+  }
+  ASSERT_GE(lower.size(), 2u);
+  ASSERT_FALSE(upper.empty());
+  for (const int sp : upper) scene.CutSpring(sp);  // the fundus freed: the lower third untouched
+  step.Step(scene, device::InputFrame{}, false);
+  EXPECT_EQ(step.last_snapshot().lower_third_separated_fraction, 0.0);
+  for (std::size_t k = 0; k < lower.size() / 2; ++k) scene.CutSpring(lower[k]);
+  step.Step(scene, device::InputFrame{}, false);
+  EXPECT_DOUBLE_EQ(step.last_snapshot().lower_third_separated_fraction,
+                   static_cast<double>(lower.size() / 2) / static_cast<double>(lower.size()));
+  for (std::size_t k = lower.size() / 2; k < lower.size(); ++k) scene.CutSpring(lower[k]);
+  step.Step(scene, device::InputFrame{}, false);
+  EXPECT_EQ(step.last_snapshot().lower_third_separated_fraction, 1.0);
 }
 
 TEST_F(CalotSessionTest, TheClipApplierClosingAcrossTheCysticDuctPlacesAClip) {
