@@ -106,6 +106,7 @@ SessionStepReport DissectionSession::Step(const device::InputFrame& input) {
   if (report.physics.grasp.slipped > 0) last_slip_s_[0] = scene_.time_s();
   if (pedal) metrics_.cautery_on_s += h;
   last_input_ = input.instruments;
+  last_right_tool_ = input.right_tool;
   for (size_t i = 0; i < 2; ++i) last_input_[i].pose = poses[i];  // drawn where the physics has it
   started_ = true;
   return report;
@@ -154,10 +155,41 @@ RenderFrame DissectionSession::MakeRenderFrame() const {
       inst.slipping = scene_.time_s() - last_slip_s_[0] < 0.5;
     } else {
       inst.cautery_active = cautery_active_;
+      inst.tool = last_right_tool_;
     }
     f.instruments.push_back(inst);
   }
+  if (calot_) f.calot = CalotDrawingOf(*calot_);
   return f;
+}
+
+CalotDrawing CalotDrawingOf(const CalotTriangleStep& step) {
+  const physics::calot::TriangleStructures& tubes = step.tubes();
+  const physics::calot::TriangleDescription& d = tubes.description();
+  CalotDrawing out;
+  for (const physics::calot::TubePiece& piece : tubes.pieces()) {
+    CalotTubeDrawing t;
+    t.kind = d.tubes[static_cast<std::size_t>(piece.tube)].kind;
+    t.radius_m = d.tubes[static_cast<std::size_t>(piece.tube)].material.outer_radius_m;
+    const auto& x = piece.rod.positions_m();
+    for (Eigen::Index i = 0; i < x.rows(); ++i) t.centreline_W.push_back(x.row(i).transpose());
+    out.tubes.push_back(std::move(t));
+  }
+  for (int c = 0; c < static_cast<int>(tubes.clips().size()); ++c) {
+    const physics::calot::ClipOnTube& clip = tubes.clips()[static_cast<std::size_t>(c)];
+    const double h = 0.001;  // the tangent from the centreline a millimetre either side
+    const Eigen::Vector3d along =
+        tubes.PositionAt(clip.tube, clip.s_m + h) - tubes.PositionAt(clip.tube, clip.s_m - h);
+    out.clips.push_back({tubes.ClipPosition(c), along.norm() > 0 ? along.normalized() : Eigen::Vector3d::UnitX(),
+                         d.tubes[static_cast<std::size_t>(clip.tube)].material.outer_radius_m});
+  }
+  const physics::calot::FatLayer& fat = step.fat();
+  out.fat_cell_size_m = fat.description().cell_spacing_m;
+  for (std::size_t i = 0; i < fat.cells().size(); ++i)
+    if (fat.cells()[i].state == physics::calot::FatCellState::kIntact) out.fat_cells_W.push_back(fat.cell_positions_m()[i]);
+  for (const physics::calot::TubeLeak& leak : tubes.Leaks())
+    out.leaks.push_back({leak.p_W_m, leak.fluid == physics::calot::Fluid::kBlood});
+  return out;
 }
 
 }  // namespace vesica::app

@@ -83,6 +83,7 @@ class DissectionSession {
   std::array<double, 2> past_contact_m_{0, 0};  ///< commanded tip beyond where the tool is drawn
   std::size_t spring_cuts_applied_ = 0;
   std::array<device::InstrumentInput, 2> last_input_{};
+  physics::InstrumentTool last_right_tool_ = physics::InstrumentTool::kCauteryHook;
   std::array<Eigen::Vector3d, 2> last_tip_{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::array<double, 2> last_slip_s_{-1e9, -1e9};
   bool cautery_active_ = false;
@@ -93,5 +94,9 @@ class DissectionSession {
   double force_sum_N_ = 0;
   long force_samples_ = 0;
 };
+
+/// What the view draws of the triangle now: each tube piece through its nodes, the clips with the
+/// tube's tangent, the fat layer's intact cells, the leaking ends.
+CalotDrawing CalotDrawingOf(const CalotTriangleStep& step);
 
 }  // namespace vesica::app
