@@ -28,8 +28,8 @@ constexpr double kFatRgb[3] = {0.88, 0.74, 0.38};  // as the context fat over th
 constexpr double kClipRgb[3] = {0.80, 0.80, 0.83};  // titanium
 constexpr double kClipWidth_m = 0.0012, kClipThickness_m = 0.0008, kClipOverhang_m = 0.0015;
 constexpr double kLeakRadius_m = 0.0025;
-// A fat cell drawn as a lobule a little larger than the cell, so neighbours merge into a layer.
-constexpr double kLobuleScale = 1.4;
+// A fat cell drawn as a lobule twice the cell, so neighbours merge into one lumpy layer.
+constexpr double kLobuleScale = 2.0;
 
 void Unit(vtkProperty* p, const double rgb[3], bool pbr, double roughness, double metallic = 0.0) {
   p->SetInterpolationToPhong();

@@ -244,7 +244,9 @@ int main(int argc, char** argv) {
         "scenario '{}': liver {} nodes, gallbladder {} nodes, {} springs, {} membrane elements; recording {:.2f} s",
         scenario.name, model->liver->num_nodes(), model->gallbladder->rest_mesh.num_vertices(),
         model->tissue.springs.size(), model->tissue.membrane.triangles.rows(), input.duration_s());
-    vesica::app::DissectionSession session(model, vesica::app::DefaultCauteryParams());
+    // A scenario with Calot's triangle replays its step too (the trainer runs it the same way).
+    vesica::app::DissectionSession session(model, vesica::app::DefaultCauteryParams(),
+                                           vesica::app::CalotSessionSetupFor(scenario, double(width) / height));
 
     std::unique_ptr<vesica::app::LaparoscopeView> view;
     if (!png_dir.empty()) {
