@@ -75,7 +75,13 @@ void FieldStatusOverlay::Update(const RenderFrame& frame) {
                                  ? "   " + std::to_string(static_cast<int>(std::lround(1e3 * h->past_contact_m))) +
                                        " mm past contact"
                                  : "";
-    if (h->pedal_down)
+    const bool exchanged = physics::IsRightHandTool(h->tool) && h->tool != physics::InstrumentTool::kCauteryHook;
+    if (exchanged)  // the clip applier or the scissors: no pedal to show, the jaws instead
+      Show(pedal_,
+           std::string(h->tool == physics::InstrumentTool::kClipApplier ? "clip applier" : "scissors") +
+               (h->pose.jaw_angle_rad > 0.1 ? ": jaws open" : ": jaws closed") + past,
+           past.empty() ? kStatusIdleRgb : kSlipRgb);
+    else if (h->pedal_down)
       Show(pedal_, (h->cautery_active ? "CUT  (burning)" : "CUT  pedal down") + past, kCauteryGlowRgb);
     else
       Show(pedal_, "hook: pedal up" + past, past.empty() ? kStatusIdleRgb : kSlipRgb);

@@ -97,6 +97,23 @@ TEST_F(FieldStatusTest, PedalAndGraspAreShownInTheFieldInTheirOwnColours) {
   EXPECT_GT(Count(slipped, active, 0, left, IsSlipAmber), 30);
 }
 
+TEST_F(FieldStatusTest, TheRightHandsLabelNamesTheExchangedInstrument) {
+  LaparoscopeView view(*scenario_, *meshes_);
+  view_poses_ = &view.poses();
+  RenderFrame f = Frame(false, false, true, false);  // the pedal pressed: only the hook would cut
+  f.instruments[1].tool = physics::InstrumentTool::kClipApplier;
+  f.instruments[1].pose.jaw_angle_rad = 0.6;
+  view.Update(f);
+  EXPECT_EQ(view.status().pedal_text(), "clip applier: jaws open");
+  f.instruments[1].tool = physics::InstrumentTool::kScissors;
+  f.instruments[1].pose.jaw_angle_rad = 0.0;
+  view.Update(f);
+  EXPECT_EQ(view.status().pedal_text(), "scissors: jaws closed");
+  f.instruments[1].tool = physics::InstrumentTool::kCauteryHook;
+  view.Update(f);
+  EXPECT_EQ(view.status().pedal_text(), "CUT  pedal down");
+}
+
 TEST_F(FieldStatusTest, EachArmsLinkIsShownAndAFaultStandsOut) {
   LaparoscopeView view(*scenario_, *meshes_);
   view_poses_ = &view.poses();
