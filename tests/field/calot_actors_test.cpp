@@ -25,8 +25,14 @@ struct Pixel {
   int r = 0, g = 0, b = 0;
 };
 
+// One window for the whole suite, as the trainer keeps its window: a fresh X connection per test
+// sometimes failed ("bad X server connection") when the Xvfb tests ran in parallel.
 class CalotView {
  public:
+  static CalotView& Shared() {
+    static CalotView* view = new CalotView;  // kept to the end: no GL teardown after main returns
+    return *view;
+  }
   CalotView() {
     window_->SetOffScreenRendering(1);
     window_->SetMultiSamples(0);
@@ -96,7 +102,7 @@ bool Red(Pixel p) { return p.r > 2 * p.g && p.r > 2 * p.b && p.r > 40; }
 bool Black(Pixel p) { return p.r + p.g + p.b < 10; }
 
 TEST(CalotActors, EachStructureIsDrawnWhereItLiesInItsColour) {
-  CalotView view;
+  CalotView& view = CalotView::Shared();
   view.Draw(TwoStructures());
   const Pixel duct = view.At(0.5 * (kDuctA + kDuctB));
   const Pixel artery = view.At(0.5 * (kArteryA + kArteryB));
@@ -107,7 +113,7 @@ TEST(CalotActors, EachStructureIsDrawnWhereItLiesInItsColour) {
 }
 
 TEST(CalotActors, AClipIsATitaniumBarAcrossItsTube) {
-  CalotView view;
+  CalotView& view = CalotView::Shared();
   CalotDrawing d = TwoStructures();
   const Eigen::Vector3d at(0.005, 0, 0.01);
   d.clips.push_back({at, (kDuctB - kDuctA).normalized(), 0.0015});
@@ -121,7 +127,7 @@ TEST(CalotActors, AClipIsATitaniumBarAcrossItsTube) {
 }
 
 TEST(CalotActors, FatHidesTheStructureItCoversUntilItIsRemoved) {
-  CalotView view;
+  CalotView& view = CalotView::Shared();
   CalotDrawing d = TwoStructures();
   for (int i = -2; i <= 2; ++i)  // a lobule row in front of the duct's middle (toward the camera, +y)
     d.fat_cells_W.push_back(Eigen::Vector3d(0.002 * i, 0.003, 0.01));
@@ -136,7 +142,7 @@ TEST(CalotActors, FatHidesTheStructureItCoversUntilItIsRemoved) {
 }
 
 TEST(CalotActors, ACutLeavesAGapAndABleedingEndShowsBlood) {
-  CalotView view;
+  CalotView& view = CalotView::Shared();
   CalotDrawing d;
   d.tubes.push_back(Straight(TubeKind::kCysticArtery, kArteryA, Eigen::Vector3d(-0.003, 0, -0.01), 0.001));
   d.tubes.push_back(Straight(TubeKind::kCysticArtery, Eigen::Vector3d(0.003, 0, -0.01), kArteryB, 0.001));
