@@ -18,27 +18,6 @@
 namespace vesica::app {
 namespace {
 
-constexpr const char* kTriangle = R"(
-[calot_triangle]
-variant = "standard"
-neck_m = [-0.0173, -0.0267, 0.0453]
-[[calot_triangle.tubes]]
-name = "cystic duct"
-kind = "cystic_duct"
-points_m = [[-0.0034, -0.0635, 0.0273], [-0.0124, -0.0471, 0.0359], [-0.0173, -0.0267, 0.0453]]
-[[calot_triangle.tubes]]
-name = "cystic artery"
-kind = "cystic_artery"
-points_m = [[0.0174, -0.0369, 0.0529], [0.0009, -0.0365, 0.0433], [-0.0207, -0.0239, 0.0422]]
-[[calot_triangle.tubes]]
-name = "common hepatic duct"
-kind = "common_hepatic_duct"
-points_m = [[0.0210, -0.0375, 0.0555], [0.0149, -0.0525, 0.0411], [-0.0034, -0.0635, 0.0273]]
-[[calot_triangle.tubes]]
-name = "common bile duct"
-kind = "common_bile_duct"
-points_m = [[-0.0034, -0.0635, 0.0273], [-0.0078, -0.0778, 0.0145], [-0.0089, -0.0983, -0.0066]]
-)";
 
 struct Setup {
   Scenario scenario;
@@ -47,14 +26,8 @@ struct Setup {
 
 const Setup& TheSetup() {
   static const Setup setup = [] {
-    std::ifstream in(DefaultScenarioPath());
-    std::string text((std::istreambuf_iterator<char>(in)), {});
-    const std::filesystem::path dir = DefaultScenarioPath().parent_path();
-    for (std::size_t at = 0; (at = text.find("\"../", at)) != std::string::npos;)
-      text.replace(at + 1, 3, (dir / "..").string() + "/");
-    const std::filesystem::path file = std::filesystem::temp_directory_path() / "vesica_calot_session_bench.toml";
-    std::ofstream(file) << text << kTriangle;
-    Setup s{LoadScenario(file), nullptr};
+    // The committed standard variant: the usual triangle on the default scenario's organs.
+    Setup s{LoadScenario(DefaultScenarioPath().parent_path() / "calot-standard.toml"), nullptr};
     s.model = BuildDissectionModelFor(s.scenario, LoadSceneMeshes(s.scenario));
     return s;
   }();

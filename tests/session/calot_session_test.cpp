@@ -25,52 +25,18 @@ namespace {
 using calot::StructureKind;
 using physics::InstrumentTool;
 
-// data/scenarios/calot-standard.toml's anatomy: the usual triangle on the default scenario's organs.
-constexpr const char* kTriangle = R"(
-[calot_triangle]
-variant = "standard"
-neck_m = [-0.0173, -0.0267, 0.0453]
-
-[[calot_triangle.tubes]]
-name = "cystic duct"
-kind = "cystic_duct"
-points_m = [[-0.0034, -0.0635, 0.0273], [-0.0124, -0.0471, 0.0359], [-0.0173, -0.0267, 0.0453]]
-
-[[calot_triangle.tubes]]
-name = "cystic artery"
-kind = "cystic_artery"
-points_m = [[0.0174, -0.0369, 0.0529], [0.0009, -0.0365, 0.0433], [-0.0207, -0.0239, 0.0422]]
-
-[[calot_triangle.tubes]]
-name = "common hepatic duct"
-kind = "common_hepatic_duct"
-points_m = [[0.0210, -0.0375, 0.0555], [0.0149, -0.0525, 0.0411], [-0.0034, -0.0635, 0.0273]]
-
-[[calot_triangle.tubes]]
-name = "common bile duct"
-kind = "common_bile_duct"
-points_m = [[-0.0034, -0.0635, 0.0273], [-0.0078, -0.0778, 0.0145], [-0.0089, -0.0983, -0.0066]]
-)";
 
 constexpr int kCysticDuct = 0, kArtery = 1, kCommonBileDuct = 3;
 
-// The default scenario with the triangle appended (mesh paths made absolute, as
-// tool_exchange_test.cpp's ScenarioWithHookLine does).
-std::filesystem::path ScenarioWithTriangle() {
-  std::ifstream in(DefaultScenarioPath());
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  const std::filesystem::path dir = DefaultScenarioPath().parent_path();
-  for (std::size_t at = 0; (at = text.find("\"../", at)) != std::string::npos;)
-    text.replace(at + 1, 3, (dir / "..").string() + "/");
-  const std::filesystem::path out = std::filesystem::path(testing::TempDir()) / "calot_session.toml";
-  std::ofstream(out) << text << kTriangle;
-  return out;
+// The committed standard variant: the usual triangle on the default scenario's organs.
+std::filesystem::path StandardTriangleScenario() {
+  return DefaultScenarioPath().parent_path() / "calot-standard.toml";
 }
 
 class CalotSessionTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    scenario_ = new Scenario(LoadScenario(ScenarioWithTriangle()));
+    scenario_ = new Scenario(LoadScenario(StandardTriangleScenario()));
     model_ = BuildDissectionModelFor(*scenario_, LoadSceneMeshes(*scenario_));
   }
   static void TearDownTestSuite() {
