@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "physics/fem/quadratic_tet_mesh.h"
 #include "physics/mesh/mesh_topology.h"
 
 namespace vesica::physics {
@@ -39,5 +40,11 @@ struct FootprintWeights {
 /// Throws std::invalid_argument naming the field when the footprint's sizes are not positive and
 /// finite or its axes are not unit and perpendicular, or when no surface lies under it.
 FootprintWeights ComputeFootprintWeights(const TetBoundary& boundary, const RectangularFootprint& jaw);
+
+/// The same for 10-node tets on the boundary's mesh (quadratic_tet_mesh.h): nodes are the corners
+/// and edge midpoints of the 6-node boundary triangles, the rows the integrals of their quadratic
+/// shape functions (which, unlike the linear hats, are negative near the corners).
+FootprintWeights ComputeQuadraticFootprintWeights(const TetBoundary& boundary, const QuadraticTetMesh& mesh,
+                                                  const RectangularFootprint& jaw);
 
 }  // namespace vesica::physics

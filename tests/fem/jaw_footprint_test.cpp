@@ -52,6 +52,37 @@ TEST(JawFootprintTest, WeightsIntegrateTheRectangleExactlyOnAFlatFace) {
   EXPECT_GT(w.nodes.size(), 4u);  // the hats of the nodes around the jaw reach into it
 }
 
+// The 10-node tets' weights integrate every quadratic field exactly on a flat face (their shape
+// functions reproduce it): sum m0_i xi_i^2 = L^3 W / 12, which the linear hats only approximate;
+// the area and the centre as before. Near a corner a quadratic weight is negative.
+TEST(JawFootprintTest, QuadraticWeightsIntegrateQuadraticFieldsExactlyOnAFlatFace) {
+  const TetrahedralMesh mesh = MakeBoxTetMesh({0.04, 0.02, 0.03}, {4, 2, 3});
+  const QuadraticTetMesh tet10 = MakeQuadraticTetMesh(mesh);
+  const TetBoundary box = ExtractBoundary(mesh);
+  const RectangularFootprint jaw = JawOnTop({0.021, 0.0093, 0.03}, std::numbers::pi / 6);
+  const double area = jaw.length_m * jaw.width_m, l = jaw.length_m, wd = jaw.width_m;
+  const Eigen::Vector3d across = jaw.normal.cross(jaw.long_axis);
+  auto moments = [&](const FootprintWeights& w, const Vertices& x) {
+    Eigen::Vector4d sums = Eigen::Vector4d::Zero();  // area, xi^2, eta^2, xi eta
+    for (size_t i = 0; i < w.nodes.size(); ++i) {
+      const Eigen::Vector3d d = x.row(w.nodes[i]).transpose() - jaw.centre_m;
+      const double xi = d.dot(jaw.long_axis), eta = d.dot(across), m0 = w.moments(static_cast<Eigen::Index>(i), 0);
+      sums += m0 * Eigen::Vector4d(1.0, xi * xi, eta * eta, xi * eta);
+    }
+    return sums;
+  };
+  const FootprintWeights quadratic = ComputeQuadraticFootprintWeights(box, tet10, jaw);
+  const Eigen::Vector4d q = moments(quadratic, tet10.nodes);
+  EXPECT_NEAR(quadratic.area_m2, area, 1e-15);
+  EXPECT_NEAR(q[0], area, 1e-15);
+  EXPECT_NEAR(q[1], l * l * l * wd / 12, 1e-18);
+  EXPECT_NEAR(q[2], wd * wd * wd * l / 12, 1e-18);
+  EXPECT_NEAR(q[3], 0.0, 1e-18);
+  const Eigen::Vector4d lin = moments(ComputeFootprintWeights(box, jaw), mesh.vertices);
+  EXPECT_GT(std::abs(lin[1] - l * l * l * wd / 12), 1e-3 * l * l * l * wd / 12);  // the hats do not
+  EXPECT_LT(quadratic.moments.col(0).minCoeff(), 0.0);
+}
+
 // Over the face's edge only the part on the face is under the jaw (the side face is edge-on).
 TEST(JawFootprintTest, AJawOverTheFacesEdgeHoldsOnlyTheFace) {
   const FootprintWeights w = ComputeFootprintWeights(Box(), JawOnTop({0.038, 0.01, 0.03}, 0.0));
