@@ -1,16 +1,19 @@
 #include "tools/convergence/gallbladder_grasp_study.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/CholmodSupport>
 #include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
 #include "app/mesh_io/mesh_io.h"
-#include "physics/fem/cholmod_solver.h"
-#include "physics/fem/fem_model.h"
+#include "physics/fem/elastic_material.h"
 #include "physics/fem/jaw_footprint.h"
-#include "physics/fem/linear_statics.h"
+#include "physics/fem/quadratic_tet_mesh.h"
+#include "physics/fem/small_strain_stiffness.h"
 #include "physics/mesh/mesh_topology.h"
 
 namespace vesica::convergence {
@@ -22,23 +25,32 @@ Eigen::Vector3d JawNormal(const ToolLoadReference& ref, JawLoad load) {
   return (load == JawLoad::kPress ? -1.0 : 1.0) * ref.prescribed_m.normalized();
 }
 
-// Minimises the elastic energy under C u = g (C: k x 3n, zero on the held dofs): with X = K^-1 C^T,
-// the multipliers solve (C X) mu = g, u = X mu, and the jaw's nodal forces on the body are C^T mu.
-Eigen::VectorXd SolveWithMultipliers(const physics::FemModel& model, const Eigen::MatrixXd& c,
-                                     const Eigen::VectorXd& g) {
-  Eigen::VectorXd k = model.linear_stiffness_values;
-  for (int s : model.constrained_slots) k[s] = 0.0;
-  for (int i : model.fixed_dofs) k[model.pattern.diagonal_slot[i]] = 1.0;
-  physics::CholmodSolver cholesky;
-  if (!cholesky.Factorize(model.pattern, k))
+// Minimises the elastic energy under C u = g (C: k x 3n) with the held dofs zero: with
+// X = K_ff^-1 C_f^T, the multipliers solve (C X) mu = g, u = X mu, and the jaw's nodal forces on
+// the body are C^T mu.
+Eigen::VectorXd SolveWithMultipliers(const Eigen::SparseMatrix<double>& k, const std::vector<bool>& held_dof,
+                                     const Eigen::MatrixXd& c, const Eigen::VectorXd& g) {
+  std::vector<int> free_index(held_dof.size(), -1);
+  int n_free = 0;
+  for (size_t i = 0; i < held_dof.size(); ++i)
+    if (!held_dof[i]) free_index[i] = n_free++;
+  std::vector<Eigen::Triplet<double>> kept;
+  kept.reserve(static_cast<size_t>(k.nonZeros()));
+  for (int col = 0; col < k.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator e(k, col); e; ++e) {
+      const int r = free_index[static_cast<size_t>(e.row())], q = free_index[static_cast<size_t>(e.col())];
+      if (r >= 0 && q >= 0 && r >= q) kept.emplace_back(r, q, e.value());  // the lower triangle
+    }
+  Eigen::SparseMatrix<double> k_ff(n_free, n_free);
+  k_ff.setFromTriplets(kept.begin(), kept.end());
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholesky(k_ff);
+  if (cholesky.info() != Eigen::Success)
     throw std::runtime_error("gallbladder study: the held bed leaves the stiffness singular");
-  Eigen::MatrixXd x(c.cols(), c.rows());
-  for (Eigen::Index r = 0; r < c.rows(); ++r) {
-    Eigen::VectorXd column;
-    cholesky.Solve(c.row(r).transpose(), column);
-    x.col(r) = column;
-  }
-  const Eigen::VectorXd mu = (c * x).ldlt().solve(g);
+  Eigen::MatrixXd c_f = Eigen::MatrixXd::Zero(n_free, c.rows());
+  for (size_t i = 0; i < held_dof.size(); ++i)
+    if (free_index[i] >= 0) c_f.row(free_index[i]) = c.col(static_cast<Eigen::Index>(i)).transpose();
+  const Eigen::MatrixXd x = cholesky.solve(c_f);
+  const Eigen::VectorXd mu = (c_f.transpose() * x).ldlt().solve(g);
   return c.transpose() * mu;
 }
 
@@ -52,6 +64,20 @@ const char* JawModelName(JawModel model) {
       return "footprint, mean";
     case JawModel::kFootprintMeanAndTilt:
       return "footprint, mean and tilt";
+    case JawModel::kFootprintCells:
+      return "footprint, 4 x 2 cells";
+  }
+  return "?";
+}
+
+const char* TetFormulationName(TetFormulation formulation) {
+  switch (formulation) {
+    case TetFormulation::kLinear:
+      return "linear tets";
+    case TetFormulation::kNodalPressure:
+      return "nodal-pressure tets";
+    case TetFormulation::kQuadratic:
+      return "quadratic tets";
   }
   return "?";
 }
@@ -65,27 +91,47 @@ bool InJaw(const Eigen::Vector3d& p, const ToolLoadReference& ref, JawLoad load)
 }
 
 GallbladderGraspResult SolveGallbladderGrasp(const physics::TetrahedralMesh& mesh, const physics::TriangleMesh& liver,
-                                             const ToolLoadReference& ref, JawModel jaw_model, JawLoad load) {
+                                             const ToolLoadReference& ref, JawModel jaw_model, JawLoad load,
+                                             TetFormulation formulation) {
   const physics::TetBoundary boundary = physics::ExtractBoundary(mesh);
   const Eigen::Vector3d normal = JawNormal(ref, load);
-  std::vector<physics::DirichletNode> held;
-  std::vector<int> inside;
+  const physics::ElasticMaterial material{2300.0, 0.45, 1000.0};  // gallbladder paper, Table 1
+  const bool quadratic = formulation == TetFormulation::kQuadratic;
+  const physics::QuadraticTetMesh tet10 = quadratic ? physics::MakeQuadraticTetMesh(mesh) : physics::QuadraticTetMesh{};
+  const Eigen::SparseMatrix<double> k = formulation == TetFormulation::kLinear
+                                            ? physics::LinearTetStiffness(mesh, material)
+                                        : quadratic ? physics::QuadraticTetStiffness(tet10, material)
+                                                    : physics::NodalPressureTetStiffness(mesh, material);
+  const int n = static_cast<int>(k.rows());
+  const physics::Vertices& nodes = quadratic ? tet10.nodes : mesh.vertices;
+
+  // The bed: the boundary nodes within 6 mm of a liver vertex; with quadratic tets also the
+  // midpoints of the boundary triangles whose corners are all held (reference.py's "fixed").
+  std::vector<bool> held_node(static_cast<size_t>(n / 3), false);
+  std::vector<int> boundary_nodes;
   for (int s = 0; s < boundary.surface.num_vertices(); ++s) {
     const Eigen::RowVector3d p = boundary.surface.vertices.row(s);
-    const double to_liver = (liver.vertices.rowwise() - p).rowwise().norm().minCoeff();
     const int node = boundary.surface_to_volume(s);
-    if (to_liver < kBedDistance_m) {
-      held.push_back({node});
-    } else if (jaw_model == JawModel::kNodesInside && InJaw(p.transpose(), ref, load)) {
-      inside.push_back(node);
-    }
+    boundary_nodes.push_back(node);
+    if ((liver.vertices.rowwise() - p).rowwise().norm().minCoeff() < kBedDistance_m)
+      held_node[static_cast<size_t>(node)] = true;
   }
-  physics::FemSettings settings;
-  settings.body_name = "gallbladder";
-  settings.material = {2300.0, 0.45, 1000.0};  // gallbladder paper, Table 1
-  settings.element_model = physics::ElementModel::kLinear;
-  const physics::FemModel bed_held = physics::BuildFemModel(mesh, settings, held);
-  const int n = bed_held.num_dofs();
+  if (quadratic)
+    for (int f = 0; f < boundary.surface.num_triangles(); ++f) {
+      int corner[3];
+      for (int c = 0; c < 3; ++c) corner[c] = boundary.surface_to_volume(boundary.surface.triangles(f, c));
+      const bool held = held_node[static_cast<size_t>(corner[0])] && held_node[static_cast<size_t>(corner[1])] &&
+                        held_node[static_cast<size_t>(corner[2])];
+      for (int c = 0; c < 3; ++c) {
+        const int mid = tet10.Midpoint(corner[c], corner[(c + 1) % 3]);
+        if (held) held_node[static_cast<size_t>(mid)] = true;
+        boundary_nodes.push_back(mid);
+      }
+    }
+  std::sort(boundary_nodes.begin(), boundary_nodes.end());
+  boundary_nodes.erase(std::unique(boundary_nodes.begin(), boundary_nodes.end()), boundary_nodes.end());
+  std::vector<bool> held_dof(static_cast<size_t>(n), false);
+  for (int i = 0; i < n; ++i) held_dof[static_cast<size_t>(i)] = held_node[static_cast<size_t>(i / 3)];
 
   // The constraints C u = g: per jaw node and component (nodes inside), or per traction mode and
   // component over the footprint; a press prescribes the normal component only.
@@ -99,6 +145,10 @@ GallbladderGraspResult SolveGallbladderGrasp(const physics::TetrahedralMesh& mes
   }
   GallbladderGraspResult r;
   if (jaw_model == JawModel::kNodesInside) {
+    std::vector<int> inside;
+    for (int node : boundary_nodes)
+      if (!held_node[static_cast<size_t>(node)] && InJaw(nodes.row(node).transpose(), ref, load))
+        inside.push_back(node);
     for (int node : inside)
       for (const Eigen::Vector3d& dir : directions) {
         Eigen::VectorXd row = Eigen::VectorXd::Zero(n);
@@ -114,28 +164,49 @@ GallbladderGraspResult SolveGallbladderGrasp(const physics::TetrahedralMesh& mes
     jaw.long_axis = (ref.jaw_long_axis - ref.jaw_long_axis.dot(normal) * normal).normalized();
     jaw.length_m = kJawLength_m;
     jaw.width_m = kJawWidth_m;
-    const physics::FootprintWeights w = physics::ComputeFootprintWeights(boundary, jaw);
+    // The footprints whose weighted mean the jaw moves: the rectangle, or each cell of its grid.
+    std::vector<physics::RectangularFootprint> cells;
+    const int cells_along = jaw_model == JawModel::kFootprintCells ? 4 : 1;
+    const int cells_across = jaw_model == JawModel::kFootprintCells ? 2 : 1;
+    const Eigen::Vector3d across = normal.cross(jaw.long_axis);
+    for (int i = 0; i < cells_along; ++i)
+      for (int j = 0; j < cells_across; ++j) {
+        physics::RectangularFootprint cell = jaw;
+        cell.length_m = jaw.length_m / cells_along;
+        cell.width_m = jaw.width_m / cells_across;
+        cell.centre_m += ((i + 0.5) * cell.length_m - 0.5 * jaw.length_m) * jaw.long_axis +
+                         ((j + 0.5) * cell.width_m - 0.5 * jaw.width_m) * across;
+        cells.push_back(cell);
+      }
     const int modes = jaw_model == JawModel::kFootprintMeanAndTilt ? 3 : 1;
-    for (int mode = 0; mode < modes; ++mode) {
-      const double integral = w.moments.col(mode).sum();  // of 1, xi, eta over the footprint
-      for (const Eigen::Vector3d& dir : directions) {
-        Eigen::VectorXd row = Eigen::VectorXd::Zero(n);
-        for (size_t i = 0; i < w.nodes.size(); ++i)
-          row.segment<3>(3 * w.nodes[i]) = w.moments(static_cast<Eigen::Index>(i), mode) * dir;
-        rows.push_back(row);
-        targets.push_back(integral * dir.dot(ref.prescribed_m));
+    std::vector<int> reached;
+    for (const physics::RectangularFootprint& cell : cells) {
+      const physics::FootprintWeights w = quadratic ? physics::ComputeQuadraticFootprintWeights(boundary, tet10, cell)
+                                                    : physics::ComputeFootprintWeights(boundary, cell);
+      reached.insert(reached.end(), w.nodes.begin(), w.nodes.end());
+      for (int mode = 0; mode < modes; ++mode) {
+        const double integral = w.moments.col(mode).sum();  // of 1, xi, eta over the footprint
+        for (const Eigen::Vector3d& dir : directions) {
+          Eigen::VectorXd row = Eigen::VectorXd::Zero(n);
+          for (size_t i = 0; i < w.nodes.size(); ++i)
+            row.segment<3>(3 * w.nodes[i]) += w.moments(static_cast<Eigen::Index>(i), mode) * dir;
+          rows.push_back(row);
+          targets.push_back(integral * dir.dot(ref.prescribed_m));
+        }
       }
     }
-    r.jaw_nodes = static_cast<int>(w.nodes.size());
+    std::sort(reached.begin(), reached.end());
+    r.jaw_nodes = static_cast<int>(std::unique(reached.begin(), reached.end()) - reached.begin());
   }
   Eigen::MatrixXd c(static_cast<Eigen::Index>(rows.size()), n);
-  for (size_t k = 0; k < rows.size(); ++k) c.row(static_cast<Eigen::Index>(k)) = rows[k].transpose();
+  for (size_t i = 0; i < rows.size(); ++i) c.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
   const Eigen::VectorXd g =
       Eigen::Map<const Eigen::VectorXd>(targets.data(), static_cast<Eigen::Index>(targets.size()));
-  const Eigen::VectorXd jaw_forces = SolveWithMultipliers(bed_held, c, g);
+  const Eigen::VectorXd jaw_forces = SolveWithMultipliers(k, held_dof, c, g);
 
   r.nodes = mesh.num_vertices();
-  for (int node = 0; node < mesh.num_vertices(); ++node) r.force_N += jaw_forces.segment<3>(3 * node);
+  r.dof_nodes = n / 3;
+  for (int node = 0; node < n / 3; ++node) r.force_N += jaw_forces.segment<3>(3 * node);
   r.force_error = (r.force_N - ref.force_N).norm() / ref.force_N.norm();
   double edges = 0;
   for (int f = 0; f < boundary.surface.num_triangles(); ++f)

@@ -29,14 +29,28 @@ enum class JawModel {
   /// As kFootprintMean, and the footprint does not tilt either (its first moments along and across
   /// the jaw are held): a traction linear over the rectangle, three multipliers per component.
   kFootprintMeanAndTilt,
+  /// The rectangle split into a fixed 4 x 2 grid of 2.5 x 2.5 mm cells, each cell's footprint
+  /// moving on average with the jaw: a traction constant on each cell (24 multipliers for a pull),
+  /// still independent of the mesh, and closer to the rigid jaw the reference prescribes (whose
+  /// traction rises toward the rectangle's edges) than one uniform traction is.
+  kFootprintCells,
 };
 
 enum class JawLoad { kPull, kPress };
 
+/// The element on the trainer's mesh (physics/fem/small_strain_stiffness.h).
+enum class TetFormulation {
+  kLinear,         ///< the trainer's 4-node tet
+  kNodalPressure,  ///< 4-node, average nodal pressure (Bonet & Burton 1998)
+  kQuadratic,      ///< 10-node, the mesh's edges split at their midpoints
+};
+
 const char* JawModelName(JawModel model);
+const char* TetFormulationName(TetFormulation formulation);
 
 struct GallbladderGraspResult {
-  int nodes = 0;
+  int nodes = 0;                                      ///< the mesh's vertices (corners)
+  int dof_nodes = 0;                                  ///< the solve's nodes (with the quadratic tets' midpoints)
   int jaw_nodes = 0;                                  ///< nodes prescribed or reached by the footprint
   double mean_edge_m = 0;                             ///< mean boundary edge
   Eigen::Vector3d force_N = Eigen::Vector3d::Zero();  ///< total reaction on the jaw
@@ -48,7 +62,8 @@ bool InJaw(const Eigen::Vector3d& p_m, const ToolLoadReference& ref, JawLoad loa
 
 GallbladderGraspResult SolveGallbladderGrasp(const physics::TetrahedralMesh& gallbladder,
                                              const physics::TriangleMesh& liver, const ToolLoadReference& ref,
-                                             JawModel model = JawModel::kFootprintMean, JawLoad load = JawLoad::kPull);
+                                             JawModel model = JawModel::kFootprintMean, JawLoad load = JawLoad::kPull,
+                                             TetFormulation formulation = TetFormulation::kLinear);
 
 /// data/anatomy/gallbladder_<nodes>.vtu and tests/fem/data/gallbladder_{grasp,press}_reference.txt.
 physics::TetrahedralMesh ReadTrainerGallbladder(const std::string& source_dir, int nodes);
