@@ -1,6 +1,5 @@
 #include "app/render/calot_actors.h"
 
-#include <Eigen/Geometry>
 #include <vtkActor.h>
 #include <vtkCellArray.h>
 #include <vtkCubeSource.h>
@@ -15,6 +14,7 @@
 #include <vtkTubeFilter.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -24,12 +24,10 @@ namespace vesica::app {
 
 namespace {
 
-constexpr double kFatRgb[3] = {0.88, 0.74, 0.38};  // as the context fat over the triangle
+constexpr double kFatRgb[3] = {0.88, 0.74, 0.38};   // as the context fat over the triangle
 constexpr double kClipRgb[3] = {0.80, 0.80, 0.83};  // titanium
 constexpr double kClipWidth_m = 0.0012, kClipThickness_m = 0.0008, kClipOverhang_m = 0.0015;
 constexpr double kLeakRadius_m = 0.0025;
-// A fat cell drawn as a lobule twice the cell, so neighbours merge into one lumpy layer.
-constexpr double kLobuleScale = 2.0;
 
 void Unit(vtkProperty* p, const double rgb[3], bool pbr, double roughness, double metallic = 0.0) {
   p->SetInterpolationToPhong();
@@ -67,7 +65,6 @@ Eigen::Vector3d CalotTubeColour(physics::calot::TubeKind kind) {
 CalotActors::CalotActors(bool pbr)
     : tube_lines_(vtkSmartPointer<vtkPolyData>::New()),
       clip_points_(vtkSmartPointer<vtkPolyData>::New()),
-      fat_points_(vtkSmartPointer<vtkPolyData>::New()),
       leak_points_(vtkSmartPointer<vtkPolyData>::New()) {
   // Tubes: each piece a polyline, its radius and colour per point.
   auto tube = vtkSmartPointer<vtkTubeFilter>::New();
@@ -98,19 +95,12 @@ CalotActors::CalotActors(bool pbr)
   auto clips = ActorOf(clip_mapper);
   Unit(clips->GetProperty(), kClipRgb, pbr, 0.3, 1.0);
 
-  // Fat: lobules at the intact cells.
-  auto lobule = vtkSmartPointer<vtkSphereSource>::New();
-  lobule->SetRadius(0.5);
-  lobule->SetThetaResolution(10);
-  lobule->SetPhiResolution(8);
-  auto fat_mapper = vtkSmartPointer<vtkGlyph3DMapper>::New();
-  fat_mapper->SetInputData(fat_points_);
-  fat_mapper->SetSourceConnection(lobule->GetOutputPort());
-  fat_mapper->SetScaleArray("size");
-  fat_mapper->SetScaleModeToScaleByMagnitude();
+  // Fat: one smooth layer over the intact cells, wet peritoneum over yellow fat.
+  auto fat_mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  fat_mapper->SetInputData(fat_.surface());
   fat_mapper->ScalarVisibilityOff();
   auto fat = ActorOf(fat_mapper);
-  Unit(fat->GetProperty(), kFatRgb, pbr, 0.45);
+  Unit(fat->GetProperty(), kFatRgb, pbr, 0.4);
 
   // Leaks: a pool of blood or bile at the open end.
   auto pool = vtkSmartPointer<vtkSphereSource>::New();
@@ -193,18 +183,17 @@ void CalotActors::Update(const CalotDrawing& drawing) {
     clip_points_->GetPointData()->AddArray(size);
     clip_points_->Modified();
   }
-  {  // fat lobules
-    auto points = vtkSmartPointer<vtkPoints>::New();
-    auto size = vtkSmartPointer<vtkDoubleArray>::New();
-    size->SetName("size");
-    for (const Eigen::Vector3d& p : drawing.fat_cells_W) {
-      points->InsertNextPoint(ToDisplay(p).data());
-      size->InsertNextValue(kLobuleScale * drawing.fat_cell_size_m);
+  {  // fat: the cells' rest places default to where they are
+    std::vector<Eigen::Vector3d> now_D, rest_D;
+    now_D.reserve(drawing.fat_cells_W.size());
+    for (const Eigen::Vector3d& p : drawing.fat_cells_W) now_D.push_back(ToDisplay(p));
+    if (drawing.fat_cells_rest_W.empty()) {
+      rest_D = now_D;
+    } else {
+      rest_D.reserve(drawing.fat_cells_rest_W.size());
+      for (const Eigen::Vector3d& p : drawing.fat_cells_rest_W) rest_D.push_back(ToDisplay(p));
     }
-    fat_points_->Initialize();
-    fat_points_->SetPoints(points);
-    fat_points_->GetPointData()->AddArray(size);
-    fat_points_->Modified();
+    fat_.Update(rest_D, now_D, drawing.fat_cell_size_m);
   }
   {  // leaks
     auto points = vtkSmartPointer<vtkPoints>::New();

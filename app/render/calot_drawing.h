@@ -17,7 +17,7 @@ struct CalotTubeDrawing {
 };
 
 struct CalotClipDrawing {
-  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();      ///< on the tube's centreline
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();       ///< on the tube's centreline
   Eigen::Vector3d along_W = Eigen::Vector3d::UnitX();  ///< the tube's tangent there
   double tube_radius_m = 0.0015;                       ///< the clip spans the tube
 };
@@ -31,6 +31,8 @@ struct CalotDrawing {
   std::vector<CalotTubeDrawing> tubes;
   std::vector<CalotClipDrawing> clips;
   std::vector<Eigen::Vector3d> fat_cells_W;  ///< intact cells' centres
+  /// The same cells' rest places (the layer's lattice), same order; empty: at rest (fat_cells_W).
+  std::vector<Eigen::Vector3d> fat_cells_rest_W;
   double fat_cell_size_m = 0.002;
   std::vector<CalotLeakDrawing> leaks;
   bool empty() const { return tubes.empty() && fat_cells_W.empty(); }

@@ -1,5 +1,6 @@
 // Calot's triangle drawn (issue 36): each structure where it projects, in its colour; a clip
-// across a tube; the fat layer hiding what it covers; a cut's gap; a bleeding end. Pixels are
+// across a tube; the fat layer as one surface that hides what it covers, opens where cells are
+// removed and moves with its cells; a cut's gap; a bleeding end. Pixels are
 // checked at independent projections of the drawing's own points through the camera.
 #include "app/render/calot_actors.h"
 
@@ -13,6 +14,9 @@
 #include <vtkWindowToImageFilter.h>
 
 #include <array>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
 
 #include "app/render/display_frame.h"
 
@@ -70,6 +74,7 @@ class CalotView {
         image_->GetScalarPointer(static_cast<int>(px[0] + 0.5), static_cast<int>(px[1] + 0.5), 0));
     return {c[0], c[1], c[2]};
   }
+  const CalotActors& actors() const { return actors_; }
 
  private:
   static constexpr int kW = 640, kH = 480;
@@ -87,7 +92,7 @@ CalotTubeDrawing Straight(TubeKind kind, const Eigen::Vector3d& a, const Eigen::
   return t;
 }
 
-const Eigen::Vector3d kDuctA(-0.02, 0, 0.01), kDuctB(0.02, 0, 0.01);     // horizontal, upper
+const Eigen::Vector3d kDuctA(-0.02, 0, 0.01), kDuctB(0.02, 0, 0.01);        // horizontal, upper
 const Eigen::Vector3d kArteryA(-0.02, 0, -0.01), kArteryB(0.02, 0, -0.01);  // horizontal, lower
 
 CalotDrawing TwoStructures() {
@@ -108,7 +113,7 @@ TEST(CalotActors, EachStructureIsDrawnWhereItLiesInItsColour) {
   const Pixel artery = view.At(0.5 * (kArteryA + kArteryB));
   EXPECT_TRUE(Greenish(duct)) << duct.r << " " << duct.g << " " << duct.b;
   EXPECT_TRUE(Red(artery)) << artery.r << " " << artery.g << " " << artery.b;
-  EXPECT_TRUE(Black(view.At(Eigen::Vector3d(0, 0, 0))));  // between them: nothing
+  EXPECT_TRUE(Black(view.At(Eigen::Vector3d(0, 0, 0))));         // between them: nothing
   EXPECT_TRUE(Black(view.At(Eigen::Vector3d(0.025, 0, 0.01))));  // past the duct's end
 }
 
@@ -126,19 +131,78 @@ TEST(CalotActors, AClipIsATitaniumBarAcrossItsTube) {
   EXPECT_TRUE(Greenish(view.At(Eigen::Vector3d(-0.01, 0, 0.01))));  // the duct away from the clip
 }
 
+// A patch of the layer in front of the duct's middle (toward the camera, +y): 7 cells along the
+// duct, 3 deep, 5 across, 4 to 8 mm in front of its axis.
+std::vector<Eigen::Vector3d> FatPatch(double remove_within_x_m = -1) {
+  std::vector<Eigen::Vector3d> cells;
+  for (int i = -3; i <= 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = -2; k <= 2; ++k)
+        if (std::abs(0.002 * i) > remove_within_x_m) cells.emplace_back(0.002 * i, 0.004 + 0.002 * j, 0.01 + 0.002 * k);
+  return cells;
+}
+
+bool Fat(Pixel p) { return p.r > p.b + 40 && p.r > p.g + 5; }
+
 TEST(CalotActors, FatHidesTheStructureItCoversUntilItIsRemoved) {
   CalotView& view = CalotView::Shared();
   CalotDrawing d = TwoStructures();
-  for (int i = -2; i <= 2; ++i)  // a lobule row in front of the duct's middle (toward the camera, +y)
-    d.fat_cells_W.push_back(Eigen::Vector3d(0.002 * i, 0.003, 0.01));
+  d.fat_cells_W = FatPatch();
   view.Draw(d);
   const Pixel covered = view.At(Eigen::Vector3d(0, 0, 0.01));
-  EXPECT_GT(covered.r, covered.b + 40) << covered.r << " " << covered.g << " " << covered.b;  // yellow fat
-  EXPECT_GT(covered.r, covered.g - 10);
-  EXPECT_TRUE(Greenish(view.At(Eigen::Vector3d(-0.015, 0, 0.01))));  // uncovered part
-  d.fat_cells_W.clear();                                            // burnt away
+  EXPECT_TRUE(Fat(covered)) << covered.r << " " << covered.g << " " << covered.b;  // yellow fat
+  EXPECT_TRUE(Greenish(view.At(Eigen::Vector3d(-0.015, 0, 0.01))));                // uncovered part
+  // One continuous layer: fat between neighbouring cells' centres too, not beads on black.
+  for (double x = -0.006; x <= 0.006; x += 0.0005) {
+    const Pixel between = view.At(Eigen::Vector3d(x, 0.004, 0.013));
+    EXPECT_TRUE(Fat(between)) << x << ": " << between.r << " " << between.g << " " << between.b;
+  }
+  // Burnt through where the cells within 2 mm of the middle went (all three deep): a hole
+  // through which the duct shows, the fat either side still there.
+  d.fat_cells_W = FatPatch(0.0021);
+  view.Draw(d);
+  const Pixel hole = view.At(Eigen::Vector3d(0, 0, 0.01));
+  EXPECT_TRUE(Greenish(hole)) << hole.r << " " << hole.g << " " << hole.b;
+  EXPECT_TRUE(Fat(view.At(Eigen::Vector3d(-0.005, 0, 0.01))));
+  EXPECT_TRUE(Fat(view.At(Eigen::Vector3d(0.005, 0, 0.01))));
+  d.fat_cells_W.clear();  // all burnt away
   view.Draw(d);
   EXPECT_TRUE(Greenish(view.At(Eigen::Vector3d(0, 0, 0.01))));
+}
+
+// The layer's surface is rebuilt when the set of intact cells changes, not when they move: then
+// it moves with them (the cells' rest places stay the lattice).
+TEST(CalotActors, TheFatLayerIsRebuiltOnlyWhenItsCellsChangeAndMovesWithThem) {
+  CalotView& view = CalotView::Shared();
+  CalotDrawing d = TwoStructures();
+  d.fat_cells_W = FatPatch();
+  view.Draw(d);
+  const int rebuilds = view.actors().fat().rebuilds();
+  const Eigen::Vector3d beside(0.0105, 0, 0.01);  // on the duct, 4.5 mm past the patch's last cells
+  EXPECT_TRUE(Greenish(view.At(beside)));
+  view.Draw(d);
+  EXPECT_EQ(view.actors().fat().rebuilds(), rebuilds);
+  d.fat_cells_rest_W = d.fat_cells_W;
+  for (Eigen::Vector3d& p : d.fat_cells_W) p.x() += 0.004;  // pushed 4 mm along the duct
+  view.Draw(d);
+  EXPECT_EQ(view.actors().fat().rebuilds(), rebuilds);
+  EXPECT_TRUE(Fat(view.At(beside)));
+  EXPECT_TRUE(Greenish(view.At(Eigen::Vector3d(-0.0085, 0, 0.01))));  // uncovered behind it
+  d.fat_cells_W.pop_back();
+  d.fat_cells_rest_W.pop_back();
+  view.Draw(d);
+  EXPECT_EQ(view.actors().fat().rebuilds(), rebuilds + 1);
+}
+
+TEST(CalotActors, MismatchedFatRestPlacesAreRefused) {
+  CalotActors actors;
+  CalotDrawing d;
+  d.fat_cells_W = FatPatch();
+  d.fat_cells_rest_W = {Eigen::Vector3d::Zero()};
+  EXPECT_THROW(actors.Update(d), std::invalid_argument);
+  d.fat_cells_rest_W.clear();
+  d.fat_cell_size_m = 0;
+  EXPECT_THROW(actors.Update(d), std::invalid_argument);
 }
 
 TEST(CalotActors, ACutLeavesAGapAndABleedingEndShowsBlood) {
