@@ -186,7 +186,10 @@ CalotDrawing CalotDrawingOf(const CalotTriangleStep& step) {
   const physics::calot::FatLayer& fat = step.fat();
   out.fat_cell_size_m = fat.description().cell_spacing_m;
   for (std::size_t i = 0; i < fat.cells().size(); ++i)
-    if (fat.cells()[i].state == physics::calot::FatCellState::kIntact) out.fat_cells_W.push_back(fat.cell_positions_m()[i]);
+    if (fat.cells()[i].state == physics::calot::FatCellState::kIntact) {
+      out.fat_cells_W.push_back(fat.cell_positions_m()[i]);
+      out.fat_cells_rest_W.push_back(fat.cells()[i].p_Rest_W_m);
+    }
   for (const physics::calot::TubeLeak& leak : tubes.Leaks())
     out.leaks.push_back({leak.p_W_m, leak.fluid == physics::calot::Fluid::kBlood});
   return out;
