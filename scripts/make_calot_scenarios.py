@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Writes data/scenarios/calot-*.toml from data/scenarios/cholecystectomy.toml (issue 36).
 Each is the default with a [calot_triangle] built from the default's context tubes, the hook's
-exchange, a name and description, and the four ducts' and artery's context tubes removed.
+exchange, a name and description, the laparoscope aimed at the triangle (look_at_m, insertion_m),
+and the context the simulated triangle replaces removed (the four ducts' and artery's tubes and
+the static fat over the triangle).
 Run after changing the default scenario (tests/scenario/calot_variant_scenarios_test.cpp checks
 that the files differ from the default only in these):  python3 scripts/make_calot_scenarios.py ."""
 import re, sys, math
@@ -42,8 +44,8 @@ def triangle(variant, neck, tubes, note):
     out = ["", "# Calot's triangle, simulated (issue 36; docs/calot.md, docs/calot-training.md). Each tube runs",
            "# from the patient's side (held) to the neck or its clamped far end; clips are judged against",
            "# planned_cut_s (default 0.6: two on the patient's side of it, one on the gallbladder's).",
-           "# The physics replaces the static context tubes of these four structures; until the renderer",
-           "# draws the simulated tubes, the ducts and the artery are not seen on screen.",
+           "# The physics replaces the static context tubes of these four structures and the static fat",
+           "# over the triangle; the view draws the simulated tubes and fat layer (app/render/calot_actors.h).",
            "[calot_triangle]", 'variant = "%s"' % variant, "neck_m = [%.4f, %.4f, %.4f]" % r4(neck)]
     for name, kind, points, comment in tubes:
         out += ["", "[[calot_triangle.tubes]]", 'name = "%s"%s' % (name, ("   # " + comment) if comment else ""),
@@ -89,7 +91,30 @@ variants["anterior-artery"] = ("cystic artery crossing in front of the common he
                                               chd, cbd),
                                "The cystic artery crosses in front of the common hepatic duct: identify it before it reaches the gallbladder and clip it there, not on the duct behind it.")
 
+# The camera assistant's view for this step: the scope aimed at the hepatocystic triangle and
+# brought in, so that the neck, the cystic duct and artery, the common hepatic duct and the common
+# bile duct's course fill the middle of the picture under the liver's edge (the default looks at
+# the liver bed from farther out). The same view for every variant, so that the anatomy, not the
+# camera, tells them apart: halfway between the standard triangle's centroid (neck, junction,
+# hilum) and the junction, so that the common bile duct's upper course shows below the triangle,
+# from about 8 cm (tests/field/calot_first_frame_test.cpp).
+corners = (neck, junction, chd[0])
+aim = lerp(mul(1.0 / 3.0, add(add(corners[0], corners[1]), corners[2])), junction, 0.5)
+scope_insertion_m = 0.14
+
+def aimed_at_the_triangle(t):
+    t, n = re.subn(r'(\[laparoscope\]\n(?:[^\n\[][^\n]*\n)*?)look_at_m = [^\n]*\n',
+                   r'\g<1>look_at_m = [%.4f, %.4f, %.4f]      # the hepatocystic triangle (scripts/make_calot_scenarios.py)\n' % r4(aim), t, count=1)
+    assert n == 1
+    t, n = re.subn(r'(\[laparoscope\]\n(?:[^\n\[][^\n]*\n)*?)insertion_m = [^\n]*\n',
+                   r'\g<1>insertion_m = %.2f                         # in close, as for the triangle\n' % scope_insertion_m, t, count=1)
+    assert n == 1
+    return t
+
 def without_context_tubes(t):
+    # The static fat over the triangle: the simulated layer replaces it.
+    t, n = re.subn(r'\[\[context_organs\]\]\nname = "fat over the hepatocystic triangle"[^\n]*\n(?:[^\n\[][^\n]*\n)*\n?', "", t, count=1)
+    assert n == 1, "fat over the hepatocystic triangle"
     for name in ("cystic duct", "common hepatic duct", "common bile duct", "cystic artery"):
         t, n = re.subn(r'\[\[context_organs\]\]\nname = "' + re.escape(name) + r'"[^\n]*\n(?:[^\n\[][^\n]*\n)*\n?', "", t, count=1)
         assert n == 1, name
@@ -102,7 +127,8 @@ for key, (variant, note, tubes, task) in variants.items():
     header = ("# Vesica scenario: Calot's triangle (%s), issue 36.\n"
               "# The default scenario (cholecystectomy.toml) with the hepatocystic triangle simulated:\n# %s.\n"
               "# The right hand's hook is exchanged (T) for the clip applier and the scissors; B opens and\n"
-              "# closes their jaws. Otherwise the default, line for line\n"
+              "# closes their jaws. The laparoscope looks at the triangle from closer in. Otherwise the\n"
+              "# default, line for line\n"
               "# (tests/scenario/calot_variant_scenarios_test.cpp).\n"
               "# World frame = patient: x left, y anterior, z cranial; metres.\n\n") % (variant, note)
     body = re.sub(r'name = "Laparoscopic cholecystectomy"', 'name = "Laparoscopic cholecystectomy, Calot\'s triangle (%s)"' % variant, body, count=1)
@@ -111,6 +137,7 @@ for key, (variant, note, tubes, task) in variants.items():
                       r'\1exchange = ["clip_applier", "scissors"]   # T: the hook, then the clip applier, then the scissors\n', body, count=1)
     assert n == 1
     body = without_context_tubes(body)
+    body = aimed_at_the_triangle(body)
     body = body.rstrip("\n") + "\n" + triangle(variant, neck, tubes, note)
     open(root + "/data/scenarios/calot-%s.toml" % key, "w").write(header + body)
     print("wrote calot-%s.toml" % key)

@@ -2,7 +2,9 @@
 // each has the property that makes it its variant (a short cystic duct, a low insertion beside
 // the common bile duct, an artery crossing in front of the common hepatic duct as the laparoscope
 // sees it), and each is the default scenario line for line but for the triangle, the hook's
-// exchange, the name and description, and the context tubes the simulated tubes replace.
+// exchange, the name and description, the laparoscope's look_at_m and insertion_m (aimed at the
+// triangle from closer in), and the context the simulated triangle replaces (the four
+// structures' tubes and the static fat over the triangle).
 
 #include <gtest/gtest.h>
 
@@ -68,11 +70,13 @@ double DistanceToPolyline_m(const Eigen::Vector3d& p, const std::vector<Eigen::V
 }
 
 // The default scenario's text and a variant's, each without what a variant may change: comments,
-// the scenario's name and description, the hook's exchange line, the [calot_triangle] tables, and
-// (from the default) the context tubes of the four structures the simulated triangle draws.
+// the scenario's name and description, the hook's exchange line, the laparoscope's look_at_m and
+// insertion_m, the [calot_triangle] tables, and (from the default) the context the simulated
+// triangle draws: the four structures' tubes and the fat over the triangle.
 std::string WithoutWhatAVariantChanges(const fs::path& path) {
   static const std::vector<std::string> kReplacedContext = {"name = \"cystic duct\"", "name = \"common hepatic duct\"",
-                                                            "name = \"common bile duct\"", "name = \"cystic artery\""};
+                                                            "name = \"common bile duct\"", "name = \"cystic artery\"",
+                                                            "name = \"fat over the hepatocystic triangle\""};
   std::ifstream in(path);
   std::vector<std::vector<std::string>> blocks{{}};  // split at each [table] header
   std::string line;
@@ -88,12 +92,14 @@ std::string WithoutWhatAVariantChanges(const fs::path& path) {
   std::stringstream out;
   for (const auto& block : blocks) {
     if (!block.empty() && block[0].find("calot_triangle") != std::string::npos) continue;
+    const bool laparoscope = !block.empty() && block[0] == "[laparoscope]";
     if (block.size() > 1 && block[0] == "[[context_organs]]" &&
         std::find(kReplacedContext.begin(), kReplacedContext.end(),
                   block[1].substr(0, block[1].find_last_not_of(' ') + 1)) != kReplacedContext.end())
       continue;
     for (const std::string& l : block)
-      if (!l.empty()) out << l << "\n";
+      if (!l.empty() && !(laparoscope && (l.rfind("look_at_m =", 0) == 0 || l.rfind("insertion_m =", 0) == 0)))
+        out << l << "\n";
   }
   return out.str();
 }
@@ -116,7 +122,7 @@ TEST(CalotVariantScenarios, EachLoadsWithItsTriangleAndTheHooksExchange) {
     EXPECT_EQ(hook.exchange, (std::vector<InstrumentKind>{InstrumentKind::kClipApplier, InstrumentKind::kScissors}));
     for (const ContextOrgan& organ : s.context_organs)
       EXPECT_TRUE(organ.name != "cystic duct" && organ.name != "cystic artery" && organ.name != "common bile duct" &&
-                  organ.name != "common hepatic duct")
+                  organ.name != "common hepatic duct" && organ.name != "fat over the hepatocystic triangle")
           << organ.name << " is drawn as context as well as simulated";
   }
 }
@@ -127,6 +133,30 @@ TEST(CalotVariantScenarios, EachIsTheDefaultButForTheTriangleTheExchangeAndTheNa
   for (const char* file : kVariants)
     EXPECT_EQ(default_text, WithoutWhatAVariantChanges(kDir / file))
         << file << " differs from cholecystectomy.toml beyond its triangle, exchange, names and replaced context tubes";
+}
+
+// The camera assistant's view of the triangle: the scope keeps its port, angle and view angle, and
+// looks at the triangle (look_at within 15 mm of the standard triangle's centroid: neck, junction,
+// hilum), from nearer than the default (its tip under 9 cm from look_at; the default's 11 cm).
+TEST(CalotVariantScenarios, EachLaparoscopeLooksAtTheTriangleFromTheDefaultsPortAndCloser) {
+  const Scenario defaults = LoadScenario(kDir / "cholecystectomy.toml");
+  const CalotTriangleConfig& standard = *LoadScenario(kDir / "calot-standard.toml").calot_triangle;
+  const Eigen::Vector3d centroid = (TubeOf(standard, TubeKind::kCysticDuct).points_m.front() + standard.neck_m +
+                                    TubeOf(standard, TubeKind::kCommonHepaticDuct).points_m.front()) /
+                                   3.0;
+  const double default_distance_m = (defaults.laparoscope.look_at_m - ScopePoseOf(defaults.laparoscope).eye_W).norm();
+  for (const char* file : kVariants) {
+    SCOPED_TRACE(file);
+    const LaparoscopeConfig scope = LoadScenario(kDir / file).laparoscope;
+    EXPECT_EQ(scope.position_m, defaults.laparoscope.position_m);
+    EXPECT_EQ(scope.scope_angle_deg, defaults.laparoscope.scope_angle_deg);
+    EXPECT_EQ(scope.view_angle_deg, defaults.laparoscope.view_angle_deg);
+    EXPECT_LT((scope.look_at_m - centroid).norm(), 0.015);
+    const double distance_m = (scope.look_at_m - ScopePoseOf(scope).eye_W).norm();
+    std::printf("scope tip to look_at: %.1f mm (default %.1f mm)\n", distance_m * 1e3, default_distance_m * 1e3);
+    EXPECT_LT(distance_m, 0.09);
+    EXPECT_GT(default_distance_m, 0.10);
+  }
 }
 
 TEST(CalotVariantScenarios, TheStandardTriangleIsTheDefaultsContextTubes) {
