@@ -116,8 +116,8 @@ std::array<Eigen::Vector3d, 2> CalotTriangleStep::GrasperJawTips(const physics::
 }
 
 void CalotTriangleStep::Step(const physics::DissectionScene& scene, const device::InputFrame& input, bool pedal_burns) {
-  // The neck moves with its gallbladder nodes' mean displacement. The tubes' pull back onto the
-  // FEM is not applied (a physics/scene API the scene does not have yet: docs/calot.md).
+  // The neck moves with its gallbladder nodes' mean displacement; the session puts the tubes'
+  // pull back on those nodes (DissectionScene::SetOutsideLoad).
   const Eigen::VectorXd& u = scene.gallbladder().state().displacement_m;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const int v : neck_nodes_) mean += u.segment<3>(3 * v);

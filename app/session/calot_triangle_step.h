@@ -71,6 +71,8 @@ class CalotTriangleStep {
   bool case_ended() const { return metrics_.CaseEnded(); }
   /// The fraction of the tube's centreline the camera sees, fat aside (at the last refresh).
   double seen_fraction(int tube) const { return seen_fraction_.at(static_cast<std::size_t>(tube)); }
+  /// The gallbladder FEM nodes that carry the neck (within neck_radius_m of it at rest).
+  const std::vector<int>& neck_nodes() const { return neck_nodes_; }
   /// Where the neck is now (the mean of its gallbladder nodes' displacement added to the rest).
   const Eigen::Vector3d& neck_W_m() const { return p_Neck_W_m_; }
   /// The jaws' segment of the right hand's instrument: from jaw_length_m back along the shaft to its tip.

@@ -24,11 +24,13 @@ fx::CauterySurfaces SurfacesOf(const physics::DissectionModel& model, const phys
 }  // namespace
 
 DissectionSession::DissectionSession(std::shared_ptr<const physics::DissectionModel> model,
-                                     const fx::CauteryParams& cautery,
-                                     const std::optional<CalotSessionSetup>& calot)
+                                     const fx::CauteryParams& cautery, const std::optional<CalotSessionSetup>& calot)
     : model_(std::move(model)), scene_(model_), cautery_(SurfacesOf(*model_, scene_), cautery) {
   metrics_.springs_total = static_cast<int>(model_->tissue.springs.size());
-  if (calot) calot_ = std::make_unique<CalotTriangleStep>(*calot, scene_);
+  if (calot) {
+    calot_ = std::make_unique<CalotTriangleStep>(*calot, scene_);
+    scene_.SetOutsideLoad(calot_->neck_nodes(), calot_->tubes().NeckStiffness_N_per_m());
+  }
 }
 
 fx::CauteryContact DissectionSession::CauteryContactFor(const physics::ToolTouch& touch, bool pedal) const {
@@ -73,8 +75,7 @@ SessionStepReport DissectionSession::Step(const device::InputFrame& input) {
   cautery_.mutable_liver_burn().UpdateGeometry(scene_.liver_positions());
   cautery_.mutable_gallbladder_burn().UpdateGeometry(scene_.gallbladder_surface_positions());
   // Only the hook burns: with the clip applier or the scissors in the port the pedal does nothing.
-  const bool pedal =
-      input.instruments[1].pedal && input.right_tool == physics::InstrumentTool::kCauteryHook;
+  const bool pedal = input.instruments[1].pedal && input.right_tool == physics::InstrumentTool::kCauteryHook;
   report.cautery = CauteryContactFor(report.physics.touches[1], pedal);
   cautery_.Step(report.cautery);
   cautery_active_ = report.cautery.active();
@@ -84,11 +85,16 @@ SessionStepReport DissectionSession::Step(const device::InputFrame& input) {
     ++report.springs_cut;
   }
 
-  if (calot_) calot_->Step(scene_, input, pedal);
+  if (calot_) {
+    calot_->Step(scene_, input, pedal);
+    // The tubes pull the neck back from the next step on; a cut tube stops pulling.
+    scene_.SetOutsideLoad(calot_->neck_nodes(), calot_->tubes().NeckStiffness_N_per_m());
+    scene_.SetOutsideLoadForce(calot_->tubes().NeckForce_N());
+  }
 
   // Where the tools are drawn: stopped at the first surface their shafts meet.
-  const std::array<double, 2> drawn = drawn_tool_limit_.Update(poses, scene_.liver_positions(),
-                                                               scene_.gallbladder_surface_positions());
+  const std::array<double, 2> drawn =
+      drawn_tool_limit_.Update(poses, scene_.liver_positions(), scene_.gallbladder_surface_positions());
   for (size_t i = 0; i < 2; ++i) past_contact_m_[i] = poses[i].insertion_m - drawn[i];
 
   // Metrics.
@@ -178,8 +184,7 @@ CalotDrawing CalotDrawingOf(const CalotTriangleStep& step) {
   for (int c = 0; c < static_cast<int>(tubes.clips().size()); ++c) {
     const physics::calot::ClipOnTube& clip = tubes.clips()[static_cast<std::size_t>(c)];
     const double h = 0.001;  // the tangent from the centreline a millimetre either side
-    const Eigen::Vector3d along =
-        tubes.PositionAt(clip.tube, clip.s_m + h) - tubes.PositionAt(clip.tube, clip.s_m - h);
+    const Eigen::Vector3d along = tubes.PositionAt(clip.tube, clip.s_m + h) - tubes.PositionAt(clip.tube, clip.s_m - h);
     out.clips.push_back({tubes.ClipPosition(c), along.norm() > 0 ? along.normalized() : Eigen::Vector3d::UnitX(),
                          d.tubes[static_cast<std::size_t>(clip.tube)].material.outer_radius_m});
   }

@@ -118,6 +118,22 @@ Eigen::Vector3d TriangleStructures::NeckForce_N() const {
   return force;
 }
 
+double TriangleStructures::NeckStiffness_N_per_m() const {
+  double stiffness = 0;
+  for (const TubePiece& piece : pieces_) {
+    const TubeRod& rod = piece.rod;
+    const int last = rod.num_nodes() - 1;
+    const bool to_neck = rod.hold(last) == NodeHold::kCoupled || rod.hold(0) == NodeHold::kCoupled;
+    if (!to_neck || piece.starts_at_cut || piece.ends_at_cut) continue;  // a stump pulls only by its weight
+    double length_m = 0;
+    for (const double l : rod.rest_lengths_m()) length_m += l;
+    const double axial = rod.material().youngs_modulus_Pa * WallArea_m2(rod.material()) / length_m;
+    const double coupling = rod.settings().coupling_stiffness_N_per_m;
+    stiffness += 1.0 / (1.0 / axial + 1.0 / coupling);
+  }
+  return stiffness;
+}
+
 const TubePiece& TriangleStructures::PieceAt(int tube, double s_m) const {
   const TubePiece* nearest = nullptr;
   double nearest_gap = std::numeric_limits<double>::infinity();

@@ -79,6 +79,11 @@ class TriangleStructures {
   /// The force the tubes pull the neck with, N (the sum of the coupling springs' forces): the
   /// scene applies it to the gallbladder's neck nodes.
   Eigen::Vector3d NeckForce_N() const;
+  /// How stiff the tubes are to the neck's motion, N/m: each piece tied to the neck and held at
+  /// its other end (not a cut stump) adds its coupling spring in series with its axial stiffness
+  /// E A / L. The scene puts it in the gallbladder's implicit step, so that NeckForce_N, a step
+  /// behind the neck's motion, stays stable.
+  double NeckStiffness_N_per_m() const;
 
   /// Current centreline point at a material coordinate (clamped to the tube).
   Eigen::Vector3d PositionAt(int tube, double s_m) const;

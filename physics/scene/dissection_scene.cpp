@@ -27,10 +27,10 @@ struct DissectionScene::Row {
   double gap = 0;
   ConstraintKind kind = ConstraintKind::kUnilateral;
   double soft = 0;
-  int instrument = 0;     // -1: a gallbladder node on a static obstacle or the liver
-  int grasp_point = -1;   // index in grasp_.points(), or -1 for a contact row
-  int normal_offset = 0;  // kFriction: its normal row is this many rows before it (< 0)
-  double friction = 0;    // kFriction: Coulomb coefficient
+  int instrument = 0;                                // -1: a gallbladder node on a static obstacle or the liver
+  int grasp_point = -1;                              // index in grasp_.points(), or -1 for a contact row
+  int normal_offset = 0;                             // kFriction: its normal row is this many rows before it (< 0)
+  double friction = 0;                               // kFriction: Coulomb coefficient
   std::shared_ptr<const BemContactLoad> liver_load;  // a tool on the liver: its footprint (else the point)
 };
 
@@ -84,6 +84,9 @@ void DissectionScene::UpdateAttachments(bool in_background) {
     }
   }
   AddRetractionStiffness(model_->retraction, k, c);  // the assistant's hold stays while springs go
+  for (const int node : outside_load_nodes_)
+    k.segment<3>(3 * node).array() +=
+        outside_load_stiffness_N_per_m_ / static_cast<double>(outside_load_nodes_.size());  // lumped, as above
   gallbladder_.SetAttachmentStiffness(k, c);
   if (in_background && model_->settings.compliance_adopt_steps > 0) {
     gallbladder_compliance_.BeginAttachments(k, c, gallbladder_.PendingRestFactor());  // one factorisation
@@ -98,6 +101,33 @@ void DissectionScene::UpdateAttachments(bool in_background) {
 void DissectionScene::CutSpring(int index) {
   physics::CutSpring(tissue_, index);
   attachments_changed_ = true;
+}
+
+void DissectionScene::SetOutsideLoad(const std::vector<int>& nodes, double stiffness_N_per_m) {
+  const int num_nodes = model_->gallbladder->num_nodes();
+  for (const int node : nodes)
+    if (node < 0 || node >= num_nodes)
+      throw std::invalid_argument("DissectionScene::SetOutsideLoad: node " + std::to_string(node) +
+                                  " is not a gallbladder node (0.." + std::to_string(num_nodes - 1) + ")");
+  if (!std::isfinite(stiffness_N_per_m) || stiffness_N_per_m < 0)
+    throw std::invalid_argument("DissectionScene::SetOutsideLoad: stiffness " + std::to_string(stiffness_N_per_m) +
+                                " N/m is not a finite value >= 0");
+  if (nodes == outside_load_nodes_ && stiffness_N_per_m == outside_load_stiffness_N_per_m_) return;
+  // Less stiffness than declared is only sluggish, so it may wait for the background refresh;
+  // more (or other nodes) must be in the very next step, or the lagged force overshoots.
+  const bool now = nodes != outside_load_nodes_ || stiffness_N_per_m > outside_load_stiffness_N_per_m_;
+  outside_load_nodes_ = nodes;
+  outside_load_stiffness_N_per_m_ = stiffness_N_per_m;
+  if (nodes.empty()) outside_load_force_N_.setZero();
+  attachments_changed_ = true;
+  if (now) UpdateAttachments(false);
+}
+
+void DissectionScene::SetOutsideLoadForce(const Eigen::Vector3d& force_N) {
+  if (!force_N.allFinite()) throw std::invalid_argument("DissectionScene::SetOutsideLoadForce: a non-finite force");
+  if (outside_load_nodes_.empty())
+    throw std::invalid_argument("DissectionScene::SetOutsideLoadForce: no nodes (SetOutsideLoad first)");
+  outside_load_force_N_ = force_N;
 }
 
 Vertices DissectionScene::gallbladder_surface_positions() const {
@@ -296,6 +326,8 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
   // 3. Free motion: the gallbladder's implicit step, the liver's quasi-static response.
   Eigen::VectorXd f_ext = AsStackedVector(spring_forces.gallbladder);
   if (!s.gravity_m_per_s2.isZero()) f_ext += gb_model.GravityForces(s.gravity_m_per_s2);
+  for (const int node : outside_load_nodes_)
+    f_ext.segment<3>(3 * node) += outside_load_force_N_ / static_cast<double>(outside_load_nodes_.size());
   if (!model_->retraction.empty())
     AddRetractionForces(model_->retraction, gallbladder_current_.vertices, gallbladder_.state().velocity_m_per_s,
                         f_ext);

@@ -77,6 +77,18 @@ class DissectionScene {
   /// Removes spring `index` (its membrane burnt away); the gallbladder's attachments follow.
   void CutSpring(int index);
 
+  /// A body outside the scene that pulls on gallbladder nodes (Calot's tubes on the neck). From
+  /// the next step on, the force of SetOutsideLoadForce is spread evenly over `nodes`, and
+  /// `stiffness_N_per_m` (how stiff that body is to the nodes' common motion, >= 0) enters the
+  /// gallbladder's implicit step as the springs' stiffness does, so that a force computed a step
+  /// behind the motion stays stable. A changed stiffness refactorises in the background, as a cut
+  /// spring does. Throws std::invalid_argument (nothing changed) for a node out of range or a
+  /// negative or non-finite stiffness.
+  void SetOutsideLoad(const std::vector<int>& nodes, double stiffness_N_per_m);
+  /// The outside body's force on the nodes of SetOutsideLoad, N, in total. Throws
+  /// std::invalid_argument for a non-finite force or when no nodes were set.
+  void SetOutsideLoadForce(const Eigen::Vector3d& force_N);
+
   const DissectionModel& model() const { return *model_; }
   double time_s() const { return time_s_; }
   long steps() const { return steps_; }
@@ -129,6 +141,9 @@ class DissectionScene {
   // the next solve's warm start; obstacle_lambda_nodes_: the nodes that had them.
   std::vector<std::array<double, 3>> obstacle_lambda_;
   std::vector<int> obstacle_lambda_nodes_;
+  std::vector<int> outside_load_nodes_;
+  double outside_load_stiffness_N_per_m_ = 0;
+  Eigen::Vector3d outside_load_force_N_ = Eigen::Vector3d::Zero();
   bool attachments_changed_ = false;
   int steps_since_compliance_ = 0;
   long compliance_adopt_step_ = -1;  // step at which the compliance begun on a worker is adopted; -1: none
