@@ -5,25 +5,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "device/calibration/servo_until.h"
 #include "firmware_protocol/node/parameter_table.h"
 
 namespace vesica::device::calibration {
 namespace {
 
 const char* kJointName[3] = {"yaw", "pitch", "insertion"};
-
-// Servo periods until done(), with the servo's currents; kMeasurement naming `what` after timeout_s.
-void RunUntil(CalibrationLink& link, JointServo& servo, const std::function<bool()>& done, double timeout_s,
-              const std::string& what) {
-  const double until = link.now_s() + timeout_s;
-  double last = link.now_s();
-  while (!done()) {
-    if (link.now_s() > until) throw CalibrationAbort(AbortReason::kMeasurement, what);
-    const double now = link.now_s();
-    link.Cycle(servo.Update(link.sample(), now - last > 0 ? now - last : 1e-3));
-    last = now;
-  }
-}
 
 // Every selected joint seeks its lower stop at once; the reading at rest on it, per joint.
 std::array<double, 3> SeekLowerStops(CalibrationLink& link, JointServo& servo, const HomingPlan& plan) {
@@ -39,7 +27,7 @@ std::array<double, 3> SeekLowerStops(CalibrationLink& link, JointServo& servo, c
     servo.SetTorqueLimit(j, plan.seek_torque[j]);
     servo.MoveTo(j, link.sample().position[j] - far, plan.seek_speed[j]);
   }
-  RunUntil(
+  ServoUntil(
       link, servo,
       [&] {
         bool all = true;
@@ -112,7 +100,7 @@ HomingResult HomeArm(CalibrationLink& link, const HomingPlan& plan, ArmDesign de
       const double coarse_shift = (joint_min[j] - plan.range_margin[j]) - stop[j];
       double offset = result.offset_before[j] + coarse_shift;
       if (plan.has_index[j]) {
-        RunUntil(
+        ServoUntil(
             link, servo, [&] { return servo.arrived(j); }, 10.0, "homing: joint did not leave its stop");
         const double before = link.ReadF32(fp::param::kPositionOffset + jj);
         // The node zeroes the joint at the first edge above: the offset's change is the edge's reading.
@@ -141,7 +129,7 @@ HomingResult HomeArm(CalibrationLink& link, const HomingPlan& plan, ArmDesign de
       if (plan.progress) plan.progress("homing", 0.4 + 0.5 * ++homed_joints / 3.0);
     }
     link.DeclareHome();
-    RunUntil(
+    ServoUntil(
         link, servo,
         [&] {
           for (int j = 0; j < 3; ++j)
@@ -151,7 +139,7 @@ HomingResult HomeArm(CalibrationLink& link, const HomingPlan& plan, ArmDesign de
         30.0, "homing: the joints did not return to the centre");
     // At rest before the session ends and the joints go free.
     const double settle_until = link.now_s() + 0.3;
-    RunUntil(
+    ServoUntil(
         link, servo, [&] { return link.now_s() >= settle_until; }, 1.0, "timer");
     // Unsaved: the stored calibration stays; the node keeps the declared offsets in force.
     link.AbortSession();
