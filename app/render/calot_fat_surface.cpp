@@ -24,8 +24,10 @@ constexpr double kReachCells = 2.0;
 // the surface stays clear of the tube's wall and the tube shows; a row of cells still draws a
 // strand, a lone cell (one bump) nothing.
 constexpr double kLevelOfFilled = 0.25;
-// Density samples per cell edge: 2 gives a 1 mm mesh for 2 mm cells, smooth round a 3 mm duct.
-constexpr int kSamplesPerCell = 2;
+// Density samples per cell edge: the cells' own lattice. Shaded with the density's gradient the
+// surface looks as smooth as on a grid twice as fine, whose rebuild cost 3.7 times as much
+// (bench/render/calot_fat_surface_bench.cpp).
+constexpr int kSamplesPerCell = 1;
 
 // The bump: smooth (zero slope at its reach), compact, 1 at the cell's centre.
 double Bump(double r2, double reach2) {
@@ -126,19 +128,17 @@ void CalotFatSurface::Rebuild(const std::vector<Eigen::Vector3d>& rest_D, double
   surface_->DeepCopy(contour->GetOutput());
   surface_->GetPointData()->SetScalars(nullptr);
 
-  // Each vertex carried by the cells whose bumps reach it, weighted as their density there.
-  // Cells bucketed by cell-sized boxes from lo.
-  const Eigen::Vector3i buckets = ((hi - lo) / cell_m).array().ceil().cast<int>() + 1;
-  std::vector<std::vector<int>> bucket(static_cast<std::size_t>(buckets.prod()));
-  auto bucket_of = [&](const Eigen::Vector3d& p) {
-    return ((p - lo) / cell_m).array().floor().cast<int>().cwiseMax(0).cwiseMin(buckets.array() - 1).matrix().eval();
+  // Each vertex carried by the cells whose bumps reach it, weighted as their density there: the
+  // cells on the 4 x 4 x 4 lattice places round it (the nearest 64; farther ones weigh little).
+  const Eigen::Vector3i lattice = ((hi - lo) / cell_m).array().ceil().cast<int>() + 1;
+  std::vector<int> cell_at(static_cast<std::size_t>(lattice.prod()), -1);
+  auto at = [&](int i, int j, int k) -> int& {
+    return cell_at[static_cast<std::size_t>(i + lattice.x() * (j + lattice.y() * k))];
   };
   for (std::size_t c = 0; c < rest_D.size(); ++c) {
-    const Eigen::Vector3i b = bucket_of(rest_D[c]);
-    bucket[static_cast<std::size_t>(b.x() + buckets.x() * (b.y() + buckets.y() * b.z()))].push_back(
-        static_cast<int>(c));
+    const Eigen::Vector3i l = ((rest_D[c] - lo) / cell_m).array().round().cast<int>();
+    at(l.x(), l.y(), l.z()) = static_cast<int>(c);  // inside: lo and hi pad the cells
   }
-  const int reach_buckets = static_cast<int>(std::ceil(kReachCells));
   vtkPoints* points = surface_->GetPoints();
   const vtkIdType n = points ? points->GetNumberOfPoints() : 0;
   vertices_rest_D_.resize(static_cast<std::size_t>(n));
@@ -147,19 +147,20 @@ void CalotFatSurface::Rebuild(const std::vector<Eigen::Vector3d>& rest_D, double
     points->GetPoint(v, x);
     const Eigen::Vector3d p(x[0], x[1], x[2]);
     vertices_rest_D_[static_cast<std::size_t>(v)] = p;
-    const Eigen::Vector3i b = bucket_of(p);
+    const Eigen::Vector3i base = ((p - lo) / cell_m).array().floor().cast<int>();
     const std::size_t first = weights_.size();
     double total = 0.0;
-    for (int k = std::max(0, b.z() - reach_buckets); k <= std::min(buckets.z() - 1, b.z() + reach_buckets); ++k)
-      for (int j = std::max(0, b.y() - reach_buckets); j <= std::min(buckets.y() - 1, b.y() + reach_buckets); ++j)
-        for (int i = std::max(0, b.x() - reach_buckets); i <= std::min(buckets.x() - 1, b.x() + reach_buckets); ++i)
-          for (int c : bucket[static_cast<std::size_t>(i + buckets.x() * (j + buckets.y() * k))]) {
-            const double w = Bump((rest_D[static_cast<std::size_t>(c)] - p).squaredNorm(), reach2);
-            if (w <= 0) continue;
-            cells_.push_back(c);
-            weights_.push_back(w);
-            total += w;
-          }
+    for (int k = std::max(0, base.z() - 1); k <= std::min(lattice.z() - 1, base.z() + 2); ++k)
+      for (int j = std::max(0, base.y() - 1); j <= std::min(lattice.y() - 1, base.y() + 2); ++j)
+        for (int i = std::max(0, base.x() - 1); i <= std::min(lattice.x() - 1, base.x() + 2); ++i) {
+          const int c = at(i, j, k);
+          if (c < 0) continue;
+          const double w = Bump((rest_D[static_cast<std::size_t>(c)] - p).squaredNorm(), reach2);
+          if (w <= 0) continue;
+          cells_.push_back(c);
+          weights_.push_back(w);
+          total += w;
+        }
     for (std::size_t e = first; e < weights_.size(); ++e) weights_[e] /= total;
     offsets_.push_back(static_cast<int>(weights_.size()));
   }
