@@ -4,10 +4,23 @@
 //   BM_GallbladderGrasp/N/<jaw model>/<load>   build + solve; jaw model 0: the nodes inside the
 //     jaw prescribed, 1: the footprint's mean (physics/fem/jaw_footprint.h), 2: its mean and tilt;
 //     load 0: pull, 1: press. Counters: force_err (relative), jaw_nodes, force_N.
+//   BM_GallbladderGrasp/N/<jaw model>/<load>/<element>: as above on element 0: linear tets, 1: the
+//     average-nodal-pressure tet, 2: 10-node tets (jaw model 3: the rectangle's 4 x 2 cells).
+//   BM_ElementStepCost/N/<element>: what the candidates would cost the trainer's step, which is a
+//     rotated-factor PCG (physics/fem): per iteration one product with K and one solve with the
+//     rest factor. Timed: that pair, on the bed-held K of the N-node mesh. Counters: dofs, nnz_K,
+//     nnz_L (the factor's), the two's cost scales the step's PCG part.
 // Run: build/<dir>/bench/fem/gallbladder_convergence_bench (docs/fidelity.md quotes it).
 
 #include <benchmark/benchmark.h>
 
+#include <Eigen/CholmodSupport>
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+#include "physics/fem/small_strain_stiffness.h"
+#include "physics/mesh/mesh_topology.h"
 #include "tools/convergence/gallbladder_grasp_study.h"
 #include "tools/convergence/liver_hook_study.h"
 
@@ -22,15 +35,62 @@ void BM_GallbladderGrasp(benchmark::State& state) {
                                                        : ReadGallbladderPressReference(VESICA_SOURCE_DIR);
   const physics::TetrahedralMesh mesh = ReadTrainerGallbladder(VESICA_SOURCE_DIR, static_cast<int>(state.range(0)));
   GallbladderGraspResult result;
-  for (auto _ : state) result = SolveGallbladderGrasp(mesh, liver, ref, model, load);
-  state.SetLabel(JawModelName(model));
+  const auto formulation = static_cast<TetFormulation>(state.range(3));
+  for (auto _ : state) result = SolveGallbladderGrasp(mesh, liver, ref, model, load, formulation);
+  state.SetLabel(std::string(JawModelName(model)) + ", " + TetFormulationName(formulation));
   state.counters["force_err"] = result.force_error;
   state.counters["force_N"] = result.force_N.norm();
   state.counters["jaw_nodes"] = result.jaw_nodes;
 }
 BENCHMARK(BM_GallbladderGrasp)
-    ->ArgsProduct({{300, 600, 1000, 1600, 3000}, {0, 1, 2}, {0, 1}})
+    ->ArgsProduct({{300, 600, 1000, 1600, 3000}, {0, 1, 2}, {0, 1}, {0}})
+    ->ArgsProduct({{300, 600, 1000, 1600, 3000}, {1, 3}, {0, 1}, {1, 2}})
     ->Unit(benchmark::kMillisecond);
+
+void BM_ElementStepCost(benchmark::State& state) {
+  const physics::TetrahedralMesh mesh = ReadTrainerGallbladder(VESICA_SOURCE_DIR, static_cast<int>(state.range(0)));
+  const physics::TriangleMesh liver = ReadTrainerLiver(VESICA_SOURCE_DIR);
+  const physics::ElasticMaterial material{2300.0, 0.45, 1000.0};
+  const auto formulation = static_cast<TetFormulation>(state.range(1));
+  const physics::QuadraticTetMesh tet10 = physics::MakeQuadraticTetMesh(mesh);
+  const Eigen::SparseMatrix<double> k =
+      formulation == TetFormulation::kLinear      ? physics::LinearTetStiffness(mesh, material)
+      : formulation == TetFormulation::kQuadratic ? physics::QuadraticTetStiffness(tet10, material)
+                                                  : physics::NodalPressureTetStiffness(mesh, material);
+  // The bed held as in the study (its midpoints too: the step's cost hardly depends on which).
+  const physics::TetBoundary boundary = physics::ExtractBoundary(mesh);
+  std::vector<bool> held(static_cast<size_t>(k.rows() / 3), false);
+  for (int s = 0; s < boundary.surface.num_vertices(); ++s)
+    if ((liver.vertices.rowwise() - boundary.surface.vertices.row(s)).rowwise().norm().minCoeff() < kBedDistance_m)
+      held[static_cast<size_t>(boundary.surface_to_volume(s))] = true;
+  if (formulation == TetFormulation::kQuadratic)
+    for (const auto& [edge, mid] : tet10.edge_midpoints)
+      held[static_cast<size_t>(mid)] = held[static_cast<size_t>(edge.first)] && held[static_cast<size_t>(edge.second)];
+  std::vector<int> index(static_cast<size_t>(k.rows()), -1);
+  int n = 0;
+  for (Eigen::Index i = 0; i < k.rows(); ++i)
+    if (!held[static_cast<size_t>(i / 3)]) index[static_cast<size_t>(i)] = n++;
+  std::vector<Eigen::Triplet<double>> kept;
+  for (int col = 0; col < k.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator e(k, col); e; ++e)
+      if (index[static_cast<size_t>(e.row())] >= 0 && index[static_cast<size_t>(e.col())] >= 0)
+        kept.emplace_back(index[static_cast<size_t>(e.row())], index[static_cast<size_t>(e.col())], e.value());
+  Eigen::SparseMatrix<double> k_ff(n, n);
+  k_ff.setFromTriplets(kept.begin(), kept.end());
+  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> factor(k_ff);
+  const Eigen::VectorXd x = Eigen::VectorXd::Ones(n);
+  Eigen::VectorXd y, z;
+  for (auto _ : state) {
+    y = k_ff * x;
+    z = factor.solve(y);
+    benchmark::DoNotOptimize(z.data());
+  }
+  state.SetLabel(TetFormulationName(formulation));
+  state.counters["dofs"] = n;
+  state.counters["nnz_K"] = static_cast<double>(k_ff.nonZeros());
+  state.counters["nnz_L"] = factor.cholmod().lnz;
+}
+BENCHMARK(BM_ElementStepCost)->ArgsProduct({{1000, 3000}, {0, 1, 2}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace vesica::convergence
