@@ -10,6 +10,7 @@
 //     hides every tube), and the same frame drawn without the fat shows the structure's own
 //     colour there (grey-green ducts, red artery): the fat is what hides it, and the tube is
 //     drawn where the independent projection puts it.
+// And holes open where the cells go (TheCysticDuctShowsWhereTheFatOnItsSightLinesIsCleared).
 // VESICA_CALOT_FIRST_FRAME_PNG_DIR=dir saves each variant's pictures, to look at.
 
 #include <gtest/gtest.h>
@@ -57,6 +58,7 @@ bool Fat(Rgb c) { return c.r > c.g + 8 && c.g > c.b + 30 && c.r > 60; }
 bool Duct(Rgb c) { return c.g + 3 >= c.r && c.g > c.b + 10 && c.g > 30; }
 // The artery's red.
 bool Artery(Rgb c) { return c.r > 1.6 * c.g && c.r > 1.6 * c.b && c.r > 40; }
+bool Tube(Rgb c) { return Duct(c) || Artery(c); }
 
 struct StructureSeen {
   double in_picture_px = 0;  // projected length of the centre line inside the picture
@@ -68,19 +70,33 @@ struct StructureSeen {
 
 class CalotFirstFrame : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(CalotFirstFrame, ShowsTheTrianglesStructuresUnderItsFat) {
-  const Scenario s = LoadScenario(fs::path(VESICA_SOURCE_DIR) / "data/scenarios" / GetParam());
-  ASSERT_TRUE(s.calot_triangle.has_value());
-  const SceneMeshes meshes = LoadSceneMeshes(s);
-  DissectionSession session(BuildDissectionModelFor(s, meshes), DefaultCauteryParams(),
-                            CalotSessionSetupFor(s, double(kWidth) / kHeight));
-  device::InputFrame input;
-  for (int i = 0; i < 2; ++i) input.instruments[i].pose.insertion_m = s.instruments[i].initial_insertion_m;
-  session.Step(input);
+// A variant's first frame: the session after one step with the instruments at their initial
+// insertion, and its render frame.
+struct VariantFrame {
+  explicit VariantFrame(const char* file)
+      : s(LoadScenario(fs::path(VESICA_SOURCE_DIR) / "data/scenarios" / file)),
+        meshes(LoadSceneMeshes(s)),
+        session(BuildDissectionModelFor(s, meshes), DefaultCauteryParams(),
+                CalotSessionSetupFor(s, double(kWidth) / kHeight)) {
+    device::InputFrame input;
+    for (int i = 0; i < 2; ++i) input.instruments[i].pose.insertion_m = s.instruments[i].initial_insertion_m;
+    session.Step(input);
+    frame = session.MakeRenderFrame();
+  }
+  Scenario s;
+  SceneMeshes meshes;
+  DissectionSession session;
+  RenderFrame frame;
+};
 
-  RenderFrame frame = session.MakeRenderFrame();
+TEST_P(CalotFirstFrame, ShowsTheTrianglesStructuresUnderItsFat) {
+  VariantFrame v(GetParam());
+  const Scenario& s = v.s;
+  ASSERT_TRUE(s.calot_triangle.has_value());
+  DissectionSession& session = v.session;
+  RenderFrame frame = v.frame;
   ASSERT_FALSE(frame.calot.fat_cells_W.empty());
-  LaparoscopeView view(s, meshes);
+  LaparoscopeView view(s, v.meshes);
   testing::OffscreenRender render(kWidth, kHeight);
   view.Update(frame);
   const Picture first = render.Render(view);
@@ -146,6 +162,83 @@ TEST_P(CalotFirstFrame, ShowsTheTrianglesStructuresUnderItsFat) {
     // At least half: the cystic structures meet at the neck, where the artery passes in front of
     // the short variant's duct.
     EXPECT_GE(double(st.own) / st.samples, 0.5) << "its own colour where the fat is left out";
+  }
+}
+
+// Holes open where the cells go: with the fat cells taken away that lie within the duct's radius
+// + the layer's cover margin (physics/calot/fat_layer.h) of the sight lines from the scope's tip
+// to the cystic duct's middle third, a tube shows there (the duct's grey-green, or the artery's red
+// where it passes in front of the short variant's duct at the neck), and the duct's first third
+// (5 mm short of the cleared part) stays under the fat. (The physics' own "uncovered" looks only
+// round the tube, not along the sight line: beside the low-inserting duct the common bile duct's
+// sleeve stays in front of it from this camera.)
+TEST_P(CalotFirstFrame, TheCysticDuctShowsWhereTheFatOnItsSightLinesIsCleared) {
+  VariantFrame v(GetParam());
+  const physics::calot::TriangleStructures& tubes = *v.session.calot_tubes();
+  int duct = -1;
+  for (int t = 0; t < tubes.num_tubes(); ++t)
+    if (tubes.description().tubes[static_cast<std::size_t>(t)].kind == TubeKind::kCysticDuct) duct = t;
+  ASSERT_GE(duct, 0);
+  const double length_m = tubes.TubeLength_m(duct);
+  const double reach_m = tubes.description().tubes[static_cast<std::size_t>(duct)].material.outer_radius_m +
+                         v.session.calot_fat()->description().cover_margin_m;
+  std::vector<Eigen::Vector3d> middle, first_third;
+  for (double s_m = 0; s_m <= length_m; s_m += kSample_m) {
+    if (s_m >= length_m / 3 && s_m <= 2 * length_m / 3) middle.push_back(tubes.PositionAt(duct, s_m));
+    if (s_m < length_m / 3 - 0.005) first_third.push_back(tubes.PositionAt(duct, s_m));
+  }
+  const Eigen::Vector3d tip = testing::ScopeEye(v.s.laparoscope);
+  auto on_a_sight_line = [&](const Eigen::Vector3d& p) {
+    return std::any_of(middle.begin(), middle.end(), [&](const Eigen::Vector3d& m) {
+      const Eigen::Vector3d to_tip = tip - m;
+      const double f = std::clamp((p - m).dot(to_tip) / to_tip.squaredNorm(), 0.0, 1.0);
+      return (m + f * to_tip - p).norm() <= reach_m;
+    });
+  };
+  RenderFrame cleared = v.frame;
+  cleared.calot.fat_cells_W.clear();
+  cleared.calot.fat_cells_rest_W.clear();
+  for (std::size_t c = 0; c < v.frame.calot.fat_cells_W.size(); ++c) {
+    const Eigen::Vector3d& p = v.frame.calot.fat_cells_W[c];
+    if (on_a_sight_line(p)) continue;
+    cleared.calot.fat_cells_W.push_back(p);
+    cleared.calot.fat_cells_rest_W.push_back(v.frame.calot.fat_cells_rest_W[c]);
+  }
+  ASSERT_LT(cleared.calot.fat_cells_W.size(), v.frame.calot.fat_cells_W.size());
+  LaparoscopeView view(v.s, v.meshes);
+  testing::OffscreenRender render(kWidth, kHeight);
+  view.Update(cleared);
+  const Picture picture = render.Render(view);
+  if (const char* png_dir = std::getenv("VESICA_CALOT_FIRST_FRAME_PNG_DIR"))
+    render.SaveLast(fs::path(png_dir) / (fs::path(GetParam()).stem().string() + "-duct-cleared.png"));
+
+  const physics::TriangleMesh liver = testing::LiverNow(v.session.scene());
+  const physics::TriangleMesh gallbladder = testing::GallbladderNow(v.session.scene());
+  auto count = [&](const std::vector<Eigen::Vector3d>& samples, bool (*is)(Rgb), int* seen) {
+    int yes = 0;
+    *seen = 0;
+    for (const Eigen::Vector3d& p : samples) {
+      const Eigen::Vector2d px = testing::ProjectToPixel(v.s.laparoscope, p, kWidth, kHeight);
+      if (!picture.contains(static_cast<int>(px.x()), static_cast<int>(px.y())) ||
+          !testing::InSight(tip, p, liver, gallbladder, 0.001))
+        continue;
+      ++*seen;
+      yes += is(picture.at(static_cast<int>(px.x()), static_cast<int>(px.y())));
+    }
+    return yes;
+  };
+  int middle_seen = 0, first_seen = 0;
+  const int duct_shows = count(middle, Tube, &middle_seen);
+  const int fat_stays = count(first_third, Fat, &first_seen);
+  std::printf(
+      "%s: cleared %zu of %zu cells; the middle third: %d of %d samples tube-coloured; the first third: %d of "
+      "%d fat\n",
+      GetParam(), v.frame.calot.fat_cells_W.size() - cleared.calot.fat_cells_W.size(), v.frame.calot.fat_cells_W.size(),
+      duct_shows, middle_seen, fat_stays, first_seen);
+  ASSERT_GT(middle_seen, 0);
+  EXPECT_GE(double(duct_shows) / middle_seen, 0.7);
+  if (first_seen > 0) {
+    EXPECT_GE(double(fat_stays) / first_seen, 0.85);
   }
 }
 
