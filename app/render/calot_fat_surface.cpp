@@ -19,10 +19,9 @@ namespace {
 // Each cell's bump reaches this many cell sizes: beyond one, so neighbours overlap and merge.
 constexpr double kReachCells = 2.0;
 // The surface passes where the density is this share of a filled lattice's (7.9 bumps): about
-// 0.96 cell sizes out from the outermost intact cells' centres, so where the physics has removed
-// every cell within a tube's radius + 2 mm (one cell) of it (uncovered: physics/calot/fat_layer.h)
-// the surface stays clear of the tube's wall and the tube shows; a row of cells still draws a
-// strand, a lone cell (one bump) nothing.
+// 0.96 cell sizes out from the outermost intact cells' centres, so where the cells within a tube's
+// radius + 2 mm (one cell) of the sight lines to it are gone the tube shows; a row of cells still
+// draws a strand, a lone cell (one bump) nothing.
 constexpr double kLevelOfFilled = 0.25;
 // Density samples per cell edge: the cells' own lattice. Shaded with the density's gradient the
 // surface looks as smooth as on a grid twice as fine, whose rebuild cost 3.7 times as much
