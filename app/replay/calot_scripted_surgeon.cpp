@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -603,10 +604,15 @@ class CalotSurgeon {
   enum class JawStage { kApproach, kClose, kCheck, kOpen };
   void JawStep() {
     const double t = session_.time_s();
+    if (next_action_ >= actions_.size()) {  // the last one done: jaws open, still
+      if (t - stage_start_ >= kDwell_s) Enter(RightPhase::kHome);
+      return;
+    }
     const JawAction& a = actions_[next_action_];
     const Vec3 target = tubes_->PositionAt(a.tube, a.s * tubes_->TubeLength_m(a.tube));
     switch (jaw_step_) {
       case JawStage::kApproach:
+        if (!jaw_adjusted_) KeepClear(actions_[next_action_]);
         right_jaw_ = kJawOpen_rad;
         right_tip_ = MoveToward(right_tip_, target, max_step_);
         if ((right_tip_ - target).norm() < 1e-9) {
@@ -617,6 +623,19 @@ class CalotSurgeon {
         break;
       case JawStage::kClose:
         right_tip_ = target;  // within a step's reach: the tube barely moves
+        if (t - stage_start_ >= kDwell_s && !JawsHoldTheTarget(actions_[next_action_])) {
+          // Another tube lies nearer the jaws (the common duct beside a short cystic duct's
+          // junction): a surgeon would not fire; 0.4 mm nearer the planned cut and look again.
+          JawAction& moved = actions_[next_action_];
+          const double step_s = 0.0004 / tubes_->TubeLength_m(moved.tube);
+          moved.s += moved.s < PlannedCut(moved.tube) ? step_s : -step_s;
+          if (++jaw_tries_ >= 12) {
+            jaw_tries_ = 0;
+            ++next_action_;
+          }
+          jaw_step_ = JawStage::kApproach;
+          break;
+        }
         if (t - stage_start_ >= kDwell_s) {
           right_jaw_ = 0;
           jaw_step_ = JawStage::kCheck;
@@ -628,23 +647,50 @@ class CalotSurgeon {
           right_jaw_ = kJawOpen_rad;
           jaw_step_ = JawStage::kOpen;
           stage_start_ = t;
+          if (debug_ && ActionsOn(a) == done_before_) {
+            const auto jaws = session_.calot_step()->RightJawSegment(scene_, PoseFor(right_, right_tip_, 0.0));
+            const auto hit = tubes_->NearestToSegment(jaws[0], jaws[1], 0.004);
+            std::fprintf(stderr, "  %s on tube %d at s %.3f did nothing; the jaws' nearest: tube %d s %.3f gap %.4f\n",
+                         a.tool == InstrumentTool::kClipApplier ? "clip" : "cut", a.tube, a.s, hit ? hit->tube : -1,
+                         hit ? hit->s_m / tubes_->TubeLength_m(hit->tube) : -1.0, hit ? hit->surface_gap_m : 0.0);
+          }
           if (ActionsOn(a) > done_before_ || ++jaw_tries_ >= 3) {
             jaw_tries_ = 0;
             ++next_action_;
+            jaw_adjusted_ = false;
           }
         }
         break;
       case JawStage::kOpen:
         if (t - stage_start_ >= kDwell_s) {
-          if (next_action_ >= actions_.size())
-            Enter(RightPhase::kHome);
-          else if (actions_[next_action_].tool != right_tool_)
+          if (actions_[next_action_].tool != right_tool_)
             Enter(RightPhase::kExchange);
           else
             jaw_step_ = JawStage::kApproach;
         }
         break;
     }
+  }
+
+  // What the closing jaws would take now: the tube nearest their segment, within a millimetre
+  // of the planned point along it.
+  bool JawsHoldTheTarget(const JawAction& a) const {
+    const auto jaws = session_.calot_step()->RightJawSegment(scene_, PoseFor(right_, right_tip_, 0.0));
+    const auto hit = tubes_->NearestToSegment(jaws[0], jaws[1], 0.004);
+    return hit && hit->tube == a.tube && std::abs(hit->s_m - a.s * tubes_->TubeLength_m(a.tube)) < 0.001;
+  }
+
+  // A clip on the patient's side goes at least 1.4 mm beyond the one before it on that tube (the
+  // clips are 1.2 mm wide), and no nearer the planned cut than 0.8 mm.
+  void KeepClear(JawAction& a) {
+    jaw_adjusted_ = true;
+    if (a.tool != InstrumentTool::kClipApplier) return;
+    const double length_m = tubes_->TubeLength_m(a.tube), cut_s = PlannedCut(a.tube);
+    if (a.s >= cut_s) return;
+    for (const auto& clip : tubes_->clips())
+      if (clip.tube == a.tube && clip.s_m / length_m < cut_s)
+        a.s = std::max(a.s, clip.s_m / length_m + 0.0014 / length_m);
+    a.s = std::min(a.s, cut_s - 0.0008 / length_m);
   }
 
   std::size_t ActionsOn(const JawAction& a) const {
@@ -737,6 +783,7 @@ class CalotSurgeon {
   JawStage jaw_step_ = JawStage::kApproach;
   double stage_start_ = 0;
   int jaw_tries_ = 0;
+  bool jaw_adjusted_ = false;
 };
 
 }  // namespace
