@@ -5,12 +5,17 @@
 //
 // The correct dissection: the left grasper takes Hartmann's pouch and retracts it laterally; the
 // hook (pedal down in short bursts, bounded tip speed) burns the connective tissue of the lower
-// third from the neck up, then the fat hiding the cystic duct and artery and the rest of the
-// triangle's layer, until the session's critical view of safety holds; the clip applier puts two
-// clips on the patient's side of each structure's planned cut and one on the gallbladder's, the
-// scissors divide each between them. The failures share the grasp and the instruments' moves:
-// clipping before the critical view, the artery cut with no clip, a clip on the common bile duct.
-// Tips move at bounded speed; the jaws, the pedal and the exchange switch only while still.
+// third from the neck up; then (optionally the hook burns the triangle's fat it can reach, and)
+// the grasper lets go of the pouch and spreads the fat hiding the cystic duct and artery and the
+// rest of the triangle's layer (blunt dissection), until the session's critical view of safety
+// holds; the clip applier puts two clips on the patient's side of each structure's planned cut
+// and one on the gallbladder's, the scissors divide each between them. Why the grasper: the
+// hook's tip pushes a tube out of itself (tip radius 2.5 mm plus the tube's), so a fat cell
+// nearer the centreline than that less the burn radius (2 mm) never comes within the hook's
+// reach, and the sleeve hugging each tube stays; open jaws straddle a tube without pushing it.
+// The grasper's reach is checked against the liver only (the soft gallbladder gives way). The failures share the grasp
+// and the instruments' moves: clipping before the critical view, the artery cut with no clip, a clip on the common bile
+// duct. Tips move at bounded speed; the jaws, the pedal and the exchange switch only while still.
 
 #include <Eigen/Core>
 #include <optional>
