@@ -204,6 +204,7 @@ std::vector<device::InputFrame> RunFundusPlan(DissectionSession& session, const 
         break;
     }
     const SessionStepReport r = StepBoth(session, grasper, grasp_tip, jaw, hook, hook_tip, pedal, frames);
+    if (st.on_step) st.on_step(session, r);
     if (st.log_progress && session.scene().steps() % static_cast<long>(1.0 / h + 0.5) == 0) {
       std::fprintf(
           stderr,
@@ -285,6 +286,30 @@ double MembraneInSight(const physics::DissectionScene& scene, const OrganSight& 
   return area > 0 ? seen / area : 1.0;
 }
 
+// Whether the grasper's jaws can take the gallbladder's surface point `p` (outward normal `n`)
+// from its port: the surface faces the port within 75 degrees, along a straight path clear of the
+// organs. (Within 60 degrees, the rule before, left the French position's flank port nothing near
+// Hartmann's pouch: the re-grasps went to the fundus, far from the springs left.)
+bool GrasperTakes(const OrganSight& sight, const Vec3& port, const Vec3& p, const Vec3& n) {
+  const double facing = n.dot((port - p).normalized());
+  return facing >= std::cos(75.0 * std::numbers::pi / 180) && sight.Clear(port, p + 0.002 * n, 0.0);
+}
+
+// Whether the hook reaches `past_m` beyond the triangle's centroid along a straight shaft from
+// its port without crossing an organ.
+bool HookReaches(const OrganSight& sight, const Vec3& port, const MembraneTarget& m, double past_m) {
+  return sight.Clear(port, m.centroid + past_m * (m.centroid - port).normalized(), 0.0);
+}
+
+// The fraction of the attached membrane's triangles the hook reaches (1 when none is attached).
+double HookReachFraction(const physics::DissectionScene& scene, const OrganSight& sight, const Vec3& port,
+                         double past_m) {
+  const std::vector<MembraneTarget> attached = AttachedMembrane(scene);
+  const auto reached = std::count_if(attached.begin(), attached.end(),
+                                     [&](const MembraneTarget& m) { return HookReaches(sight, port, m, past_m); });
+  return attached.empty() ? 1.0 : static_cast<double>(reached) / static_cast<double>(attached.size());
+}
+
 std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const ScriptedSurgeonSettings& st) {
   const physics::DissectionModel& model = session.scene().model();
   const physics::DissectionScene& scene = session.scene();
@@ -325,8 +350,23 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
     throw std::runtime_error("scripted dissection: the grasper's port reaches no side of Hartmann's pouch");
   // The traction's direction: laterally, away from the fossa's rim the springs were grown
   // toward, which opens the slot beside the gallbladder to the scope. (Lifting toward the scope as
-  // well turned the membrane edge-on: 79 % of it in sight at worst, against 90 %.)
-  auto traction_for = [&](const Vec3&) -> Vec3 { return -model.toward_liver; };
+  // well turned the membrane edge-on: 79 % of it in sight at worst, against 90 %.) Where the
+  // hook comes at the slot across the fossa's medial rim (the French position's left
+  // hypochondrium), the pull turns `tilt_rad` caudally, the inferolateral traction on Hartmann's
+  // pouch of the textbook, which lifts the gallbladder's side of the membrane out of the fossa
+  // above the rim: from the start where the hook's port reaches little of the membrane at rest
+  // (below), further, step by step, while it reaches none of what is left.
+  double tilt_rad = 0;
+  auto traction = [&]() -> Vec3 {
+    const Vec3 lateral = -model.toward_liver;
+    if (tilt_rad == 0) return lateral;
+    const Vec3 caudal_W(0, 0, -1);  // the patient frame's z is cranial
+    const Vec3 caudal = (caudal_W - caudal_W.dot(lateral) * lateral).normalized();
+    return std::cos(tilt_rad) * lateral + std::sin(tilt_rad) * caudal;
+  };
+  constexpr double kRadPerDeg = std::numbers::pi / 180;
+  const double tilt_step_rad = st.traction_tilt_step_deg * kRadPerDeg;
+  const double max_tilt_rad = st.max_traction_tilt_deg * kRadPerDeg;
   int grip = pouch;
   if (st.log_progress)
     std::fprintf(stderr,
@@ -334,14 +374,28 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
                  "at %.0f degrees\n",
                  pouch, along_gallbladder(surface.vertices.row(pouch).transpose()),
                  std::acos(best_facing) * 180 / std::numbers::pi);
-  Vec3 lateral = traction_for(surface.vertices.row(pouch).transpose());
+  // The hook's burns start kShort before a target and end kPast beyond it (HookMove below).
+  constexpr double kShort = 0.005, kPast = 0.002, kBurnSpeed = 0.01, kTension_N = 1.0;
+  // How much of the membrane the hook's port reaches in a straight line before any traction: from
+  // the epigastric port about half (91 of 178 triangles); from the French position's left
+  // hypochondrium 13, the fossa's medial rim lying between. Where it is under
+  // hidden_slot_reach_fraction, the pull is inferolateral and longer from the start (lateral
+  // alone, 1.2 to 2 cm, left the membrane under the rim: 17 of 41 springs cut in 120 s).
+  const double reach_at_rest = HookReachFraction(scene, sight, hook.p_RemoteCentre_W, kPast);
+  const bool slot_hidden_from_hook = reach_at_rest < st.hidden_slot_reach_fraction;
+  const double retraction_m = slot_hidden_from_hook ? st.hidden_slot_retraction_m : st.retraction_m;
+  if (slot_hidden_from_hook) tilt_rad = st.hidden_slot_tilt_deg * kRadPerDeg;
+  if (st.log_progress)
+    std::fprintf(stderr,
+                 "the hook's port reaches %.0f %% of the membrane at rest: traction %.0f degrees caudal of lateral\n",
+                 100 * reach_at_rest, tilt_rad / kRadPerDeg);
+  Vec3 lateral = traction();
   double stuck_since = -1;
 
   enum class Phase { kSettle, kApproach, kRetract, kDissect, kRelease, kDone } phase = Phase::kSettle;
   // The hook's moves on one target: to 5 mm short of it along its shaft, then with the pedal
   // down through it to 2 mm past, then back to where it started burning.
   enum class HookMove { kChoose, kToStart, kBurn, kBack } hook_move = HookMove::kChoose;
-  constexpr double kShort = 0.005, kPast = 0.002, kBurnSpeed = 0.01, kTension_N = 1.0;
   double pull_m = 0;
   Vec3 grasp_tip = grasper.p_RemoteCentre_W + 0.05 * grasper.reference_direction_W;
   const Vec3 hook_home = hook.p_RemoteCentre_W + 0.05 * hook.reference_direction_W;
@@ -384,7 +438,7 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
         const double grasp_force_N = scene.haptic_frame(0).f_Tool_W.norm();
         if (grasp_force_N > kTension_N)
           pull_m = std::max(0.0, pull_m - 0.5 * max_step);
-        else if (pull_m < st.retraction_m + st.retraction_gain_m * cut)
+        else if (pull_m < retraction_m + st.retraction_gain_m * cut)
           pull_m += 0.5 * max_step;
         grasp_tip = MoveToward(grasp_tip, retract_origin + pull_m * lateral, max_step);
         if (phase == Phase::kRetract) {
@@ -428,6 +482,14 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
               stuck_since = -1;
             } else if (stuck_since < 0) {
               stuck_since = t;
+            } else if (t - stuck_since > 1.0 && tilt_rad + 1e-9 < max_tilt_rad &&
+                       HookReachFraction(scene, sight, hook.p_RemoteCentre_W, kPast) == 0) {
+              tilt_rad = std::min(max_tilt_rad, tilt_rad + tilt_step_rad);
+              lateral = traction();
+              stuck_since = -1;
+              if (st.log_progress)
+                std::fprintf(stderr, "  traction tilted %.0f degrees caudally (t %.2f s)\n",
+                             tilt_rad * 180 / std::numbers::pi, t);
             } else if (t - stuck_since > 1.0) {
               // Nothing left that both the hook and the scope reach: let go and take the
               // gallbladder again nearer the springs still holding it, then lift it from there.
@@ -442,13 +504,13 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
               int best_grip = -1;
               for (int v = 0; v < surface.num_vertices(); ++v) {
                 const Vec3 p = x.row(v).transpose();
-                if (v == grip || n.row(v).dot((grasper.p_RemoteCentre_W - p).normalized()) < 0.5) continue;
+                if (v == grip || !GrasperTakes(sight, grasper.p_RemoteCentre_W, p, n.row(v).transpose())) continue;
                 if (best_grip < 0 || (p - holding).norm() < (x.row(best_grip).transpose() - holding).norm())
                   best_grip = v;
               }
               if (best_grip >= 0) {
                 grip = best_grip;
-                lateral = traction_for(x.row(grip).transpose());
+                lateral = traction();
                 phase = Phase::kApproach;
                 jaw = 0.5;
                 approach.Restart();
@@ -468,7 +530,17 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
                 seen += v;
                 both += r && v;
               }
-              std::fprintf(stderr, "  attached %d, reachable %d, seen %d, both %d\n", n, reach, seen, both);
+              double lo = 1e9, hi = -1e9;
+              for (const physics::TissueSpring& spring : scene.tissue().springs)
+                if (spring.alive) {
+                  const double a = along_gallbladder(rest.row(spring.gallbladder_vertex).transpose());
+                  lo = std::min(lo, a), hi = std::max(hi, a);
+                }
+              std::fprintf(
+                  stderr,
+                  "  attached %d, reachable %d, seen %d, both %d; springs left %.2f to %.2f of the way from the "
+                  "neck, grip at %.2f\n",
+                  n, reach, seen, both, lo, hi, along_gallbladder(surface.vertices.row(grip).transpose()));
             }
             break;
           }
@@ -530,6 +602,7 @@ std::vector<device::InputFrame> RunPouchPlan(DissectionSession& session, const S
         break;
     }
     const SessionStepReport r = StepBoth(session, grasper, grasp_tip, jaw, hook, hook_tip, pedal, frames);
+    if (st.on_step) st.on_step(session, r);
     if (st.log_progress && session.scene().steps() % static_cast<long>(0.5 / h + 0.5) == 0) {
       double in_sight = -1;
       if (st.scope_eye_W) {
