@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <thread>
@@ -165,6 +166,8 @@ TEST_P(CalotScriptedSessionTest, ACorrectDissectionReachesTheCriticalViewAndPass
   // The view from the model's own state, independently of the metrics: the triangle's layer
   // cleared, the lower third off the bed, the duct and the artery each in view and bare.
   ASSERT_TRUE(metrics.CriticalViewTime().has_value()) << "never reached the critical view";
+  std::printf("%s: critical view at %.2f s, session %.2f s (%zu steps)\n", GetParam().c_str(),
+              *metrics.CriticalViewTime(), session->time_s(), frames.size());
   const calot::CalotSnapshot& last = session->calot_step()->last_snapshot();
   EXPECT_GE(session->calot_fat()->TriangleClearedFraction(), calot::CvsThresholds{}.fat_removed_min);
   EXPECT_GE(last.lower_third_separated_fraction, calot::CvsThresholds{}.lower_third_separated_min);
@@ -304,6 +307,27 @@ TEST_P(CalotScriptedSessionTest, ClippingTheCommonBileDuctIsTheCriticalError) {
   EXPECT_EQ(stored.metrics.cystic_duct_clips, 0);
   EXPECT_FALSE(stored.metrics.calot_passed);
   EXPECT_FALSE(stored.metrics.success);
+}
+
+TEST(CalotScriptedSurgeonTest, RefusesASessionWithoutATriangleAndANonPositiveTipSpeed) {
+  const Case c = LoadCase("standard");
+  DissectionSession without(c.model, DefaultCauteryParams());  // no triangle in this session
+  try {
+    RunScriptedCalot(without, CalotScript::kCorrectDissection);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no triangle"), std::string::npos) << e.what();
+  }
+  DissectionSession with(c.model, DefaultCauteryParams(), c.setup);
+  CalotSurgeonSettings still;
+  still.tip_speed_m_per_s = 0;
+  try {
+    RunScriptedCalot(with, CalotScript::kCorrectDissection, still);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("tip_speed_m_per_s"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(with.time_s(), 0.0);  // nothing stepped
 }
 
 INSTANTIATE_TEST_SUITE_P(Variants, CalotScriptedSessionTest,
