@@ -16,6 +16,7 @@
 #include <cmath>
 
 #include "app/render/display_frame.h"
+#include "app/render/hidden_side_culling.h"
 #include "app/render/material_model.h"
 
 namespace vesica::app {
@@ -67,8 +68,12 @@ std::vector<vtkSmartPointer<vtkActor>> MakeContextOrganActors(const std::vector<
     auto normals = vtkSmartPointer<vtkPolyDataNormals>::New();  // smooth shading across the facets
     normals->SetInputConnection(source->GetOutputPort());
     normals->SetFeatureAngle(80);
+    // Built once and handed over as data, the mapper marked static: a pipeline behind each of
+    // the dozen organs was re-checked (and its bounds asked for) every frame for nothing.
     auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-    mapper->SetInputConnection(normals->GetOutputPort());
+    normals->Update();
+    mapper->SetInputData(normals->GetOutput());
+    mapper->StaticOn();
     mapper->ScalarVisibilityOff();
     auto actor = vtkSmartPointer<vtkActor>::New();
     actor->SetMapper(mapper);
@@ -88,6 +93,7 @@ std::vector<vtkSmartPointer<vtkActor>> MakeContextOrganActors(const std::vector<
       p->SetRoughness(kContextRoughness);
     }
     actor->PickableOff();
+    CullHiddenSide(actor, normals->GetOutput());  // closed organs seen from outside
     actors.push_back(actor);
   }
   return actors;

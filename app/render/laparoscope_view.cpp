@@ -5,6 +5,7 @@
 #include <vtkCamera.h>
 #include <vtkLight.h>
 #include <vtkPNGWriter.h>
+#include <vtkPropCollection.h>
 #include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -13,13 +14,16 @@
 #include <vtkWindowToImageFilter.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 
 #include "app/render/calot_actors.h"
 #include "app/render/context_organs.h"
+#include "app/render/display_bounds.h"
 #include "app/render/display_frame.h"
 #include "app/render/field_status_overlay.h"
+#include "app/render/hidden_side_culling.h"
 #include "app/render/instrument_actors.h"
 #include "app/render/instrument_shadow.h"
 #include "app/render/membrane_sheet.h"
@@ -35,6 +39,13 @@ namespace vesica::app {
 namespace {
 template <typename T>
 using Ptr = vtkSmartPointer<T>;
+
+// VTK asks each actor in each pass of each frame whether it is translucent (its opacity, its
+// textures, a scan of its colour array). For the organs, the context and the instruments the
+// answer is fixed once they are built (opaque colours, opacity set once): ask once and keep it.
+void KeepOpaqueDecision(vtkActor* actor) {
+  if (!actor->HasTranslucentPolygonalGeometry()) actor->ForceOpaqueOn();
+}
 }  // namespace
 
 struct LaparoscopeView::Impl {
@@ -44,6 +55,11 @@ struct LaparoscopeView::Impl {
   Ptr<vtkLight> light = Ptr<vtkLight>::New();
   Ptr<vtkCallbackCommand> before_render = Ptr<vtkCallbackCommand>::New();
   std::vector<vtkActor*> shadow_receivers;  // the organs
+  // The clipping range's box: the static context's, once; the organs and the membrane from the
+  // points they draw; every other prop (instruments, smoke, Calot's triangle) asked each frame.
+  std::vector<vtkProp*> static_props, props_asked_for_bounds;
+  int props_sorted = -1;  // how many props the renderer had when they were sorted
+  DisplayBounds static_bounds_D;
   bool shadows = true;
   std::optional<OrganSurface> liver, gallbladder, wall;
   MembraneSheet membrane;
@@ -81,6 +97,36 @@ struct LaparoscopeView::Impl {
   static void BeforeRender(vtkObject*, unsigned long, void* impl, void*) {
     static_cast<Impl*>(impl)->PlaceLightAndShadows();
   }
+
+  // The props whose bounds are asked for each frame: all but the static context and the
+  // organs and membrane, whose boxes the view keeps.
+  void SortPropsForBounds() {
+    const std::vector<vtkProp*> known = {liver->actor(), gallbladder->actor(), membrane.actor()};
+    static_bounds_D = DisplayBounds{};
+    for (vtkProp* prop : static_props) static_bounds_D.Extend(prop->GetBounds());
+    props_asked_for_bounds.clear();
+    vtkCollectionSimpleIterator it;
+    vtkPropCollection* props = renderer->GetViewProps();
+    props_sorted = props->GetNumberOfItems();
+    props->InitTraversal(it);
+    while (vtkProp* prop = props->GetNextProp(it))
+      if (std::find(known.begin(), known.end(), prop) == known.end() &&
+          std::find(static_props.begin(), static_props.end(), prop) == static_props.end())
+        props_asked_for_bounds.push_back(prop);
+  }
+
+  // The camera's clipping range around what is drawn, as vtkRenderer::ResetCameraClippingRange()
+  // sets it (the same box: the visible props' bounds), without asking every actor's pipeline.
+  void ResetClippingRange() {
+    if (renderer->GetViewProps()->GetNumberOfItems() != props_sorted) SortPropsForBounds();  // a prop added since
+    DisplayBounds box = static_bounds_D;
+    box.Extend(liver->bounds_D());
+    box.Extend(gallbladder->bounds_D());
+    if (membrane.actor()->GetVisibility()) box.Extend(membrane.bounds_D());
+    for (vtkProp* prop : props_asked_for_bounds)
+      if (prop->GetVisibility() && prop->GetUseBounds()) box.Extend(prop->GetBounds());
+    if (!box.empty()) renderer->ResetCameraClippingRange(box.box.data());
+  }
 };
 
 LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& meshes, MaterialModel materials)
@@ -97,6 +143,9 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
                              impl_->tissue_texture, 0.02);
   r.AddActor(impl_->liver->actor());
   r.AddActor(impl_->gallbladder->actor());
+  // The liver is closed, seen from outside and dented by millimetres: its far side stays hidden.
+  // (Not the gallbladder: grasped and folded, its surface may turn its back to the scope.)
+  CullHiddenSide(impl_->liver->actor(), impl_->liver->poly_data());
   if (scenario.abdominal_wall.opacity > 0) {
     constexpr double kWallRgb[3] = {0.75, 0.45, 0.40};
     impl_->wall.emplace(meshes.abdominal_wall, kWallRgb, 0.12, scenario.abdominal_wall.opacity);
@@ -116,12 +165,16 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
   for (const auto& organ : MakeContextOrganActors(scenario.context_organs, pbr)) {
     r.AddActor(organ);
     impl_->shadow_receivers.push_back(organ);
+    impl_->static_props.push_back(organ);
   }
+  if (impl_->wall) impl_->static_props.push_back(impl_->wall->actor());
   if (scenario.calot_triangle) {  // the triangle's tubes and fat, drawn from each frame
     impl_->calot = std::make_unique<CalotActors>(pbr);
     for (vtkActor* a : impl_->calot->actors()) r.AddActor(a);
   }
   for (vtkActor* organ : impl_->shadow_receivers) ReceiveInstrumentShadows(organ);
+  for (vtkActor* organ : impl_->shadow_receivers) KeepOpaqueDecision(organ);
+  if (impl_->wall) KeepOpaqueDecision(impl_->wall->actor());
   r.AddActor(impl_->membrane.actor());
   r.AddActor(impl_->smoke.actor());
   // Translucency by plain alpha blending, in the order drawn (membrane, then smoke), without
@@ -140,7 +193,10 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
     InstrumentFrame f;
     f.pose = physics::AimAt(centre, scope.look_at_m, config.initial_insertion_m, reference);
     ia.Update(f);
-    for (const auto& a : ia.actors()) r.AddActor(a);
+    for (const auto& a : ia.actors()) {
+      KeepOpaqueDecision(a);
+      r.AddActor(a);
+    }
     impl_->poses.push_back(f.pose);
     impl_->instruments.push_back(std::move(ia));
   }
@@ -158,7 +214,8 @@ LaparoscopeView::LaparoscopeView(const Scenario& scenario, const SceneMeshes& me
   camera->SetFocalPoint(ToDisplay(scope.look_at_m).data());
   camera->SetViewUp(ToDisplay(pose.up_W).data());
   camera->SetViewAngle(scope.view_angle_deg);
-  r.ResetCameraClippingRange();
+  impl_->SortPropsForBounds();
+  impl_->ResetClippingRange();
   // The scope's light leaves its tip beside the lens (placed before each render, scope_light.h):
   // near tissue bright, far tissue dark. VTK's attenuation is 1 / (c0 + c1 r + c2 r^2); this one
   // is 1 at the working distance, 2.5x at the lens, 0.36x at twice the distance (an inverse
@@ -215,8 +272,8 @@ void LaparoscopeView::Update(const RenderFrame& frame) {
     m.poses[i] = frame.instruments[i].pose;
   }
   m.status->Update(frame);
-  // Deformed organs may leave the clipping range set for the rest shape.
-  m.renderer->ResetCameraClippingRange();
+  // Deformed organs and moved instruments may leave the clipping range set for the last frame.
+  m.ResetClippingRange();
 }
 
 vtkRenderWindow* LaparoscopeView::OffscreenWindow(int width, int height) {

@@ -47,6 +47,7 @@ void MembraneSheet::Update(const physics::Vertices& vertices, const physics::Tri
   cells_.clear();
   rgba_.clear();
   centroids_D_.clear();
+  bounds_D_ = DisplayBounds{};
   for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
     const float o = opacity.empty() ? 1.0f : Unit(opacity[f]);
     const auto alpha = static_cast<unsigned char>(std::lround(255.0 * kMembraneAlpha * o));
@@ -55,7 +56,11 @@ void MembraneSheet::Update(const physics::Vertices& vertices, const physics::Tri
     const auto c = BurnedColour(kMembraneRgb, 1.0, burn.empty() ? 0.0f : burn[f]);
     rgba_.push_back({c[0], c[1], c[2], alpha});
     Eigen::Vector3d centroid_D = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) centroid_D += ToDisplay(vertices.row(triangles(f, k)).transpose());
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p_D = ToDisplay(vertices.row(triangles(f, k)).transpose());
+      centroid_D += p_D;
+      bounds_D_.Extend(p_D);  // as VTK bounds a polydata: by the points its cells use
+    }
     centroids_D_.push_back(centroid_D / 3.0);
   }
   order_.resize(cells_.size());

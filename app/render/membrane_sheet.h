@@ -12,6 +12,7 @@
 #include <array>
 #include <vector>
 
+#include "app/render/display_bounds.h"
 #include "physics/mesh/mesh_types.h"
 
 class vtkActor;
@@ -33,6 +34,9 @@ class MembraneSheet {
   /// before each render (the camera may have moved since Update).
   void SortBackToFront(const Eigen::Vector3d& eye_D);
 
+  /// The box of the triangles drawn (display frame; empty when none is).
+  const DisplayBounds& bounds_D() const { return bounds_D_; }
+
  private:
   void WriteCells();
 
@@ -41,6 +45,7 @@ class MembraneSheet {
   std::vector<std::array<unsigned char, 4>> rgba_;
   std::vector<Eigen::Vector3d> centroids_D_;
   std::vector<std::size_t> order_, scratch_order_;
+  DisplayBounds bounds_D_;
   vtkSmartPointer<vtkPolyData> poly_;
   vtkSmartPointer<vtkActor> actor_;
 };

@@ -122,6 +122,9 @@ void OrganSurface::WriteGeometry(const physics::Vertices& vertices) {
         nrm[corner + c] = static_cast<float>(mirror * normals(v, c));
       }
     }
+  bounds_D_ = DisplayBounds{};
+  for (vtkIdType corner = 0; corner < poly_->GetNumberOfPoints(); ++corner)
+    bounds_D_.Extend(xyz[3 * corner], xyz[3 * corner + 1], xyz[3 * corner + 2]);
   poly_->GetPoints()->Modified();
   poly_->GetPointData()->GetNormals()->Modified();
   poly_->Modified();

@@ -16,6 +16,7 @@
 
 #include <vector>
 
+#include "app/render/display_bounds.h"
 #include "physics/mesh/triangle_mesh.h"
 
 class vtkActor;
@@ -43,6 +44,8 @@ class OrganSurface {
   void SetBurn(const std::vector<float>& burn);
   /// The burn each vertex is drawn with (#V): the highest burn of its triangles.
   const std::vector<float>& vertex_burn() const { return burn_; }
+  /// The box of the points drawn now (display frame): what VTK's bounds of the actor would be.
+  const DisplayBounds& bounds_D() const { return bounds_D_; }
 
   /// Physically based shading (VTK's PBR) instead of Phong: `roughness` 0 (mirror) .. 1 (matte);
   /// the colour texture given at construction becomes the base-colour texture, and `normal_map`
@@ -59,6 +62,7 @@ class OrganSurface {
   std::vector<float> next_burn_;  // per vertex, scratch for SetBurn
   vtkTexture* texture_ = nullptr;
   bool deformed_ = false;
+  DisplayBounds bounds_D_;
   vtkSmartPointer<vtkPolyData> poly_;
   vtkSmartPointer<vtkActor> actor_;
 };
