@@ -120,6 +120,33 @@ def without_context_tubes(t):
         assert n == 1, name
     return t
 
+# What the cleared triangle shows behind it, so the view through it is tissue, not a void: the
+# portal vein at the back of the hepatoduodenal ligament (posterior and medial to the common
+# ducts, behind the duodenum's first part) and the posterior peritoneum further back. Drawn only
+# (solid = false): nothing rests on them. The default's view does not look through the triangle,
+# so they are the variants' alone (tests/scenario/calot_variant_scenarios_test.cpp).
+backdrop = """
+[[context_organs]]
+name = "portal vein"   # behind the common ducts, seen through the cleared triangle
+shape = "tube"
+points_m = [[0.0260, -0.0500, 0.0600], [0.0150, -0.0680, 0.0420], [0.0050, -0.1050, 0.0150]]
+radius_m = 0.006
+rgb = [0.47, 0.34, 0.44]
+solid = false
+
+[[context_organs]]
+name = "posterior peritoneum"   # over the vena cava and the right kidney, the back of the view
+shape = "ellipsoid"
+centre_m = [-0.0100, -0.1400, 0.0600]
+semi_axes_m = [0.1600, 0.0150, 0.1200]
+rgb = [0.78, 0.60, 0.52]
+solid = false
+"""
+
+def with_backdrop(t):
+    i = t.index("[calot_triangle]")
+    return t[:i] + backdrop.lstrip("\n") + "\n" + t[i:]
+
 for key, (variant, note, tubes, task) in variants.items():
     t = text
     # header: our own comment block in place of the default's
@@ -139,5 +166,6 @@ for key, (variant, note, tubes, task) in variants.items():
     body = without_context_tubes(body)
     body = aimed_at_the_triangle(body)
     body = body.rstrip("\n") + "\n" + triangle(variant, neck, tubes, note)
+    body = with_backdrop(body)
     open(root + "/data/scenarios/calot-%s.toml" % key, "w").write(header + body)
     print("wrote calot-%s.toml" % key)

@@ -71,12 +71,14 @@ double DistanceToPolyline_m(const Eigen::Vector3d& p, const std::vector<Eigen::V
 
 // The default scenario's text and a variant's, each without what a variant may change: comments,
 // the scenario's name and description, the hook's exchange line, the laparoscope's look_at_m and
-// insertion_m, the [calot_triangle] tables, and (from the default) the context the simulated
-// triangle draws: the four structures' tubes and the fat over the triangle.
+// insertion_m, the [calot_triangle] tables, (from the default) the context the simulated
+// triangle draws: the four structures' tubes and the fat over the triangle, and (from the
+// variant) the backdrop the cleared triangle shows: the portal vein and the posterior peritoneum.
 std::string WithoutWhatAVariantChanges(const fs::path& path) {
   static const std::vector<std::string> kReplacedContext = {"name = \"cystic duct\"", "name = \"common hepatic duct\"",
                                                             "name = \"common bile duct\"", "name = \"cystic artery\"",
-                                                            "name = \"fat over the hepatocystic triangle\""};
+                                                            "name = \"fat over the hepatocystic triangle\"",
+                                                            "name = \"portal vein\"", "name = \"posterior peritoneum\""};
   std::ifstream in(path);
   std::vector<std::vector<std::string>> blocks{{}};  // split at each [table] header
   std::string line;
@@ -124,6 +126,14 @@ TEST(CalotVariantScenarios, EachLoadsWithItsTriangleAndTheHooksExchange) {
       EXPECT_TRUE(organ.name != "cystic duct" && organ.name != "cystic artery" && organ.name != "common bile duct" &&
                   organ.name != "common hepatic duct" && organ.name != "fat over the hepatocystic triangle")
           << organ.name << " is drawn as context as well as simulated";
+    // Behind the triangle, tissue rather than a void; drawn only (the gallbladder rests on neither).
+    int backdrop = 0;
+    for (const ContextOrgan& organ : s.context_organs)
+      if (organ.name == "portal vein" || organ.name == "posterior peritoneum") {
+        ++backdrop;
+        EXPECT_FALSE(organ.solid) << organ.name;
+      }
+    EXPECT_EQ(backdrop, 2);
   }
 }
 
