@@ -75,10 +75,13 @@ double DistanceToPolyline_m(const Eigen::Vector3d& p, const std::vector<Eigen::V
 // triangle draws: the four structures' tubes and the fat over the triangle, and (from the
 // variant) the backdrop the cleared triangle shows: the portal vein and the posterior peritoneum.
 std::string WithoutWhatAVariantChanges(const fs::path& path) {
-  static const std::vector<std::string> kReplacedContext = {"name = \"cystic duct\"", "name = \"common hepatic duct\"",
-                                                            "name = \"common bile duct\"", "name = \"cystic artery\"",
+  static const std::vector<std::string> kReplacedContext = {"name = \"cystic duct\"",
+                                                            "name = \"common hepatic duct\"",
+                                                            "name = \"common bile duct\"",
+                                                            "name = \"cystic artery\"",
                                                             "name = \"fat over the hepatocystic triangle\"",
-                                                            "name = \"portal vein\"", "name = \"posterior peritoneum\""};
+                                                            "name = \"portal vein\"",
+                                                            "name = \"posterior peritoneum\""};
   std::ifstream in(path);
   std::vector<std::vector<std::string>> blocks{{}};  // split at each [table] header
   std::string line;
