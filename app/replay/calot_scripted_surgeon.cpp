@@ -500,7 +500,8 @@ class CalotSurgeon {
   // Blunt dissection with the grasper (its jaws' tips push the fat; a cell pushed beyond the
   // tear strain tears loose): the nearest fat worth removing that the grasper reaches from its
   // port and the scope sees, the tip brought to it with the jaws just open (open jaws straddle a
-  // tube rather than push it), then spread and closed again at three rolls 60 degrees apart.
+  // tube rather than push it), then spread and closed again: at three rolls 60 degrees apart
+  // beside a tube, once in the open layer.
   void Spread() {
     const double t = session_.time_s();
     switch (spread_.stage) {
@@ -543,6 +544,11 @@ class CalotSurgeon {
         }
         spread_.stage = SpreadStage::kToCell;
         spread_.roll = 0;
+        {
+          // Around a tube the jaws spread at three rolls; in the open layer one does.
+          const NearestTube tube = NearestTubeTo(spread_.at);
+          spread_.rolls = tube.distance_m < tube.radius_m + fat_->description().sleeve_thickness_m + 0.001 ? 3 : 1;
+        }
         break;
       }
       case SpreadStage::kToCell:
@@ -557,7 +563,7 @@ class CalotSurgeon {
                           : std::max(kSpreadClosed_rad, kJawOpen_rad - (u - 1) * (kJawOpen_rad - kSpreadClosed_rad));
         if (u >= 2) {
           spread_.since = t;
-          if (++spread_.roll >= 3) {
+          if (++spread_.roll >= spread_.rolls) {
             const bool removed = fat_->cells()[static_cast<std::size_t>(spread_.target)].state != FatCellState::kIntact;
             if (!removed) give_up_until_s_[static_cast<std::size_t>(spread_.target)] = t + 10.0;
             spread_.stage = SpreadStage::kChoose;
@@ -757,7 +763,7 @@ class CalotSurgeon {
   enum class SpreadStage { kChoose, kToCell, kSpread };
   struct SpreadMove {
     SpreadStage stage = SpreadStage::kChoose;
-    int target = -1, roll = 0;
+    int target = -1, roll = 0, rolls = 3;
     Vec3 at = Vec3::Zero();
     double since = 0;
   } spread_;
