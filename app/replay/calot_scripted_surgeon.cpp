@@ -717,8 +717,9 @@ class CalotSurgeon {
     f.instruments[0].pose.roll_rad = left_roll_;
     f.instruments[1].pose = PoseFor(right_, right_tip_, right_tool_ == InstrumentTool::kCauteryHook ? 0.0 : right_jaw_);
     f.instruments[1].pedal = pedal_ && right_tool_ == InstrumentTool::kCauteryHook;
-    session_.Step(f);
+    const SessionStepReport r = session_.Step(f);
     frames_.push_back(f);
+    if (st_.on_step) st_.on_step(session_, r);
   }
 
   void Log() const {

@@ -18,6 +18,7 @@
 // duct. Tips move at bounded speed; the jaws, the pedal and the exchange switch only while still.
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,6 +54,8 @@ struct CalotSurgeonSettings {
   bool log_progress = false;      ///< one line per simulated 5 s on stderr
   /// The scope's eye (CalotSessionSetup::camera): when set, the hook burns only what it sees.
   std::optional<Eigen::Vector3d> scope_eye_W;
+  /// Called after every physics step (tests look at the field at a moment of the dissection).
+  std::function<void(const DissectionSession&, const SessionStepReport&)> on_step;
 };
 
 /// Drives `session` (which must run Calot's triangle) through `script` until it is done, the case

@@ -24,8 +24,7 @@
 #include "app/session/dissection_setup.h"
 #include "app/session/session_runner.h"
 #include "device/input/replay_input.h"
-#include "physics/collision/surface_ray_caster.h"
-#include "tests/app/screen_projection.h"
+#include "tests/calot_scripted/calot_seen_samples.h"
 #include "tests/records/temp_dir.h"
 
 namespace vesica::app {
@@ -95,60 +94,6 @@ RunnerStatus ReplayThroughRunner(const Case& c, const std::vector<device::InputF
   return s;
 }
 
-// The image point by independent projection (tests/app/screen_projection.h's pinhole, not
-// the renderer, not the session's visibility): samples every 0.5 mm along the tube, each seen
-// when it projects into the 1280 x 720 picture, the segment from the scope's eye to it crosses
-// neither the liver nor the gallbladder as they are now, and passes no intact fat cell within
-// half a cell. Returns each seen sample's pixel and its projected radius (px).
-struct ProjectedSample {
-  Eigen::Vector2d pixel;
-  double radius_px = 0;
-};
-std::vector<ProjectedSample> SeenSamples(const Case& c, const DissectionSession& session, int tube) {
-  constexpr int kWidth = 1280, kHeight = 720;
-  physics::SurfaceRayCaster organs;
-  organs.UpdateVertices(organs.AddSurface(c.model->liver->rest_surface), session.scene().liver_positions());
-  organs.UpdateVertices(organs.AddSurface(c.model->gallbladder_boundary.surface),
-                        session.scene().gallbladder_surface_positions());
-  const testing::ScopeCamera camera = testing::CameraOf(c.scenario.laparoscope);
-  const double focal_px =
-      0.5 * kHeight / std::tan(0.5 * c.scenario.laparoscope.view_angle_deg * std::numbers::pi / 180.0);
-  const auto& tubes = *session.calot_tubes();
-  const auto& fat = *session.calot_fat();
-  const double radius_m = tubes.description().tubes[static_cast<std::size_t>(tube)].material.outer_radius_m;
-  const double half_cell_m = 0.5 * fat.description().cell_spacing_m;
-  std::vector<ProjectedSample> seen;
-  for (double s_m = 0; s_m <= tubes.TubeLength_m(tube); s_m += 0.0005) {
-    const Eigen::Vector3d p = tubes.PositionAt(tube, s_m);
-    const Eigen::Vector2d px = testing::ProjectToPixel(c.scenario.laparoscope, p, kWidth, kHeight);
-    const double depth_m = (p - camera.eye).dot(camera.forward);
-    if (depth_m <= 0 || px.x() < 0 || px.x() >= kWidth || px.y() < 0 || px.y() >= kHeight) continue;
-    // Up to the tube's near wall, so the tube's own surface does not count.
-    const Eigen::Vector3d wall = p - radius_m * (p - camera.eye).normalized();
-    if (organs.FirstHit(physics::ToolSegment{camera.eye, wall})) continue;
-    bool under_fat = false;
-    for (std::size_t k = 0; k < fat.cells().size() && !under_fat; ++k) {
-      if (fat.cells()[k].state != physics::calot::FatCellState::kIntact) continue;
-      const Eigen::Vector3d q = fat.cell_positions_m()[k], d = wall - camera.eye;
-      const double u = std::clamp((q - camera.eye).dot(d) / d.squaredNorm(), 0.0, 1.0);
-      under_fat = (camera.eye + u * d - q).norm() < half_cell_m;
-    }
-    if (!under_fat) seen.push_back({px, focal_px * radius_m / depth_m});
-  }
-  return seen;
-}
-
-// Seen samples of `a` whose projected disc overlaps no seen sample's disc of `b`.
-int SeparateSamples(const std::vector<ProjectedSample>& a, const std::vector<ProjectedSample>& b) {
-  int separate = 0;
-  for (const ProjectedSample& x : a) {
-    bool overlaps = false;
-    for (const ProjectedSample& y : b) overlaps = overlaps || (x.pixel - y.pixel).norm() < x.radius_px + y.radius_px;
-    separate += overlaps ? 0 : 1;
-  }
-  return separate;
-}
-
 class CalotScriptedSessionTest : public ::testing::TestWithParam<std::string> {
  protected:
   void SetUp() override { case_ = std::make_unique<Case>(LoadCase(GetParam())); }
@@ -202,10 +147,12 @@ TEST_P(CalotScriptedSessionTest, ACorrectDissectionReachesTheCriticalViewAndPass
 
   // Both structures visible, each apart from the other, at the end (an independent projection):
   // at least a fifth of each one's length seen where the other's picture does not cover it.
-  const auto duct = SeenSamples(*case_, *session, kCysticDuct), artery = SeenSamples(*case_, *session, kCysticArtery);
+  const auto duct = testing::SeenSamples(case_->scenario, *case_->model, *session, kCysticDuct),
+             artery = testing::SeenSamples(case_->scenario, *case_->model, *session, kCysticArtery);
   const auto samples_of = [&](int tube) { return static_cast<int>(tubes.TubeLength_m(tube) / 0.0005) + 1; };
-  EXPECT_GE(SeparateSamples(duct, artery), samples_of(kCysticDuct) / 5) << "of " << duct.size() << " duct samples seen";
-  EXPECT_GE(SeparateSamples(artery, duct), samples_of(kCysticArtery) / 5)
+  EXPECT_GE(testing::SeparateSamples(duct, artery), samples_of(kCysticDuct) / 5)
+      << "of " << duct.size() << " duct samples seen";
+  EXPECT_GE(testing::SeparateSamples(artery, duct), samples_of(kCysticArtery) / 5)
       << "of " << artery.size() << " artery samples seen";
 
   const SessionRecord stored = StoreAndReadBack(*case_, session->metrics());

@@ -30,6 +30,7 @@
 #include "app/scenario/scenario_loader.h"
 #include "app/session/dissection_session.h"
 #include "app/session/dissection_setup.h"
+#include "calot_colours.h"
 #include "organ_sight.h"
 #include "scope_rays.h"
 
@@ -51,14 +52,6 @@ constexpr int kMargin_px = 2;
 double MinimumLength_px(const Scenario& s, TubeKind kind) {
   return s.calot_triangle->variant == "short cystic duct" && kind == TubeKind::kCysticDuct ? 50.0 : 200.0;
 }
-
-// Yellow fat lit by the scope: red above green above blue, blue well below.
-bool Fat(Rgb c) { return c.r > c.g + 8 && c.g > c.b + 30 && c.r > 60; }
-// The bile ducts' grey-green: green at least red, both above blue.
-bool Duct(Rgb c) { return c.g + 3 >= c.r && c.g > c.b + 10 && c.g > 30; }
-// The artery's red.
-bool Artery(Rgb c) { return c.r > 1.6 * c.g && c.r > 1.6 * c.b && c.r > 40; }
-bool Tube(Rgb c) { return Duct(c) || Artery(c); }
 
 struct StructureSeen {
   double in_picture_px = 0;  // projected length of the centre line inside the picture
@@ -228,8 +221,8 @@ TEST_P(CalotFirstFrame, TheCysticDuctShowsWhereTheFatOnItsSightLinesIsCleared) {
     return yes;
   };
   int middle_seen = 0, first_seen = 0;
-  const int duct_shows = count(middle, Tube, &middle_seen);
-  const int fat_stays = count(first_third, Fat, &first_seen);
+  const int duct_shows = count(middle, testing::Tube, &middle_seen);
+  const int fat_stays = count(first_third, testing::Fat, &first_seen);
   std::printf(
       "%s: cleared %zu of %zu cells; the middle third: %d of %d samples tube-coloured; the first third: %d of "
       "%d fat\n",
