@@ -132,7 +132,8 @@ void CalotTriangleStep::Step(const physics::DissectionScene& scene, const device
     const bool jaws = i == 0 || input.right_tool == physics::InstrumentTool::kClipApplier ||
                       input.right_tool == physics::InstrumentTool::kScissors;
     if (jaws && input.instruments[static_cast<std::size_t>(i)].pose.jaw_angle_rad > geometry_.jaw_open_rad) continue;
-    tubes_.PushByTip(scene.tool_tip(i), geometry_.tip_radius_m);
+    const bool hook = i == 1 && input.right_tool == physics::InstrumentTool::kCauteryHook;
+    tubes_.PushByTip(scene.tool_tip(i), hook ? geometry_.hook_wire_radius_m : geometry_.tip_radius_m);
   }
   // Blunt dissection: the grasper's jaw tips push the fat (open jaws spread it).
   for (const Eigen::Vector3d& jaw_tip : GrasperJawTips(scene, input.instruments[0].pose))

@@ -38,18 +38,20 @@ struct CalotSessionSetup {
 
 /// Instrument geometry the step uses (m, rad).
 struct CalotToolGeometry {
-  double jaw_length_m = 0.018;        ///< a 5 mm instrument's jaws, hinge to tip (app/render/grasper_jaw.h)
-  double jaw_capture_gap_m = 0.004;   ///< a tube whose wall is within this of the jaws' segment is between them
-  double jaw_open_rad = 0.1;          ///< above this the jaws count as open (B toggles 0 / open)
-  double tip_radius_m = 0.0025;       ///< a 5 mm instrument's tip, pushing tubes and fat
+  double jaw_length_m = 0.018;       ///< a 5 mm instrument's jaws, hinge to tip (app/render/grasper_jaw.h)
+  double jaw_capture_gap_m = 0.004;  ///< a tube whose wall is within this of the jaws' segment is between them
+  double jaw_open_rad = 0.1;         ///< above this the jaws count as open (B toggles 0 / open)
+  double tip_radius_m = 0.0025;      ///< a 5 mm instrument's tip, pushing tubes and fat
+  /// The L-hook's wire, pushing tubes: thinner than the shaft, so that its burn (hook_burn_radius_m)
+  /// reaches the fat against a tube's wall, as a surgeon peels the sleeve off a duct with it.
+  double hook_wire_radius_m = 0.001;
   double hook_burn_radius_m = 0.002;  ///< fat cells within this of the hook's tip share its energy
   double hook_power_W = 30.0;         ///< coagulation power of the hook's pedal
-  double neck_radius_m = 0.008;
+  double neck_radius_m = 0.008;       ///< gallbladder nodes within this of the neck at rest move it
   /// What the camera sees of the tubes (rays past the liver and the gallbladder) is refreshed
   /// every this many steps (20 Hz at 200 Hz physics), >= 1.
   int visibility_period_steps = 10;
-  double occlusion_margin_m = 0.001;  ///< a surface this near the tube's point does not hide it       ///< gallbladder
-                                      ///< nodes within this of the neck at rest move it
+  double occlusion_margin_m = 0.001;  ///< a surface this near the tube's point does not hide it
 };
 
 class CalotTriangleStep {
@@ -98,11 +100,11 @@ class CalotTriangleStep {
   std::vector<int> neck_nodes_;  // gallbladder FEM nodes near the neck at rest
   Eigen::Vector3d neck_rest_mean_m_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d p_Neck_W_m_ = Eigen::Vector3d::Zero();
-  std::vector<int> lower_third_springs_;
+  std::vector<int> lower_third_springs_;  // connective tissue springs whose gallbladder end is near the neck
   physics::SurfaceRayCaster organs_;
   int liver_surface_ = -1, gallbladder_surface_ = -1;
   std::vector<double> seen_fraction_;  // per tube, at the last refresh
-  long steps_ = 0;                     // connective tissue springs whose gallbladder end is near the neck
+  long steps_ = 0;
   bool right_jaw_was_open_ = false;
   bool assessment_stopped_ = false;
   std::vector<app::calot::CalotEvent> pending_events_;

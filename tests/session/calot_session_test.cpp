@@ -25,13 +25,10 @@ namespace {
 using calot::StructureKind;
 using physics::InstrumentTool;
 
-
 constexpr int kCysticDuct = 0, kArtery = 1, kCommonBileDuct = 3;
 
 // The committed standard variant: the usual triangle on the default scenario's organs.
-std::filesystem::path StandardTriangleScenario() {
-  return DefaultScenarioPath().parent_path() / "calot-standard.toml";
-}
+std::filesystem::path StandardTriangleScenario() { return DefaultScenarioPath().parent_path() / "calot-standard.toml"; }
 
 class CalotSessionTest : public ::testing::Test {
  protected:
@@ -361,6 +358,44 @@ TEST_F(CalotSessionTest, TheTubesHoldTheNeckUpAgainstItsSag) {
   EXPECT_LT(pull.dot(sag_with), 0.0);
   // The tubes' end follows the neck: the pull is the coupling springs' stretch, not a free end.
   EXPECT_GT(pull.norm(), 1e-4);
+}
+
+TEST_F(CalotSessionTest, TheHooksWireReachesTheFatAgainstADuctsWall) {
+  // The sleeve cell of the cystic duct nearest its centreline (against the wall, on the scope's
+  // side): the hook brought onto it with its pedal down pushes the duct only by its 1 mm wire, so
+  // its 2 mm burn reaches the cell and takes it within 4 s. (Pushing by the 2.5 mm shaft radius kept
+  // every cell nearer the centreline than 2.5 + 1.5 - 2 = 2 mm out of reach: the duct could not
+  // be bared with the hook.)
+  auto session = NewSession();
+  const auto& fat = *session->calot_fat();
+  const auto& tubes = *session->calot_tubes();
+  const Eigen::Vector3d eye = scenario_->laparoscope.position_m;
+  int cell = -1;
+  double nearest = 1e9;
+  for (std::size_t c = 0; c < fat.cells().size(); ++c) {
+    const auto& fc = fat.cells()[c];
+    if (fc.anchor_tube != kCysticDuct) continue;
+    const Eigen::Vector3d axis_point = tubes.PositionAt(kCysticDuct, fc.anchor_s_m);
+    const Eigen::Vector3d p = fat.cell_positions_m()[c];
+    if ((p - axis_point).dot(eye - axis_point) <= 0) continue;  // the side the instruments come from
+    const double d = (p - axis_point).norm();
+    if (d < nearest) nearest = d, cell = static_cast<int>(c);
+  }
+  ASSERT_GE(cell, 0);
+  std::printf("the cell %.2f mm from the duct's centreline (wall at 1.5 mm)\n", 1e3 * nearest);
+  ASSERT_LT(nearest, 0.002);
+  const auto c = static_cast<std::size_t>(cell);
+  // The hook comes in from 6 mm outside the wall, along the line from the axis through the cell,
+  // at 1 cm/s with the pedal down, and stays at the cell's place (the duct gives way before it).
+  const Eigen::Vector3d axis_point = tubes.PositionAt(kCysticDuct, fat.cells()[c].anchor_s_m);
+  const Eigen::Vector3d target = fat.cell_positions_m()[c];
+  const Eigen::Vector3d out = (target - axis_point).normalized();
+  const double h = model_->settings.time_step_s, approach_m = 0.006;
+  for (int i = 0; i < 800 && fat.cells()[c].state == physics::calot::FatCellState::kIntact; ++i) {
+    const double left_m = std::max(0.0, approach_m - 0.01 * h * i);
+    session->Step(Frame(InstrumentTool::kCauteryHook, RightTipAt(target + left_m * out, 0), true));
+  }
+  EXPECT_EQ(fat.cells()[c].state, physics::calot::FatCellState::kBurnt);
 }
 
 }  // namespace
