@@ -10,6 +10,9 @@
 //     rotated-factor PCG (physics/fem): per iteration one product with K and one solve with the
 //     rest factor. Timed: that pair, on the bed-held K of the N-node mesh. Counters: dofs, nnz_K,
 //     nnz_L (the factor's), the two's cost scales the step's PCG part.
+//   BM_JawSubgridCompliance/N/<patch radius mm>: what the scene computes once per grasp
+//     (physics/fem/jaw_subgrid_compliance.h) for the reference's jaw on the N-node mesh: the linear
+//     and 10-node patches' jaw compliances. Counters: patch_tets, patch_dofs.
 // Run: build/<dir>/bench/fem/gallbladder_convergence_bench (docs/fidelity.md quotes it).
 
 #include <benchmark/benchmark.h>
@@ -46,6 +49,25 @@ BENCHMARK(BM_GallbladderGrasp)
     ->ArgsProduct({{300, 600, 1000, 1600, 3000}, {0, 1, 2}, {0, 1}, {0}})
     ->ArgsProduct({{300, 600, 1000, 1600, 3000}, {1, 3}, {0, 1}, {1, 2}})
     ->Unit(benchmark::kMillisecond);
+
+void BM_JawSubgridCompliance(benchmark::State& state) {
+  const ToolLoadReference ref = ReadGallbladderGraspReference(VESICA_SOURCE_DIR);
+  const physics::TetrahedralMesh mesh = ReadTrainerGallbladder(VESICA_SOURCE_DIR, static_cast<int>(state.range(0)));
+  const physics::TetBoundary boundary = physics::ExtractBoundary(mesh);
+  physics::RectangularFootprint jaw;
+  jaw.centre_m = ref.centre_m;
+  jaw.normal = ref.prescribed_m.normalized();
+  jaw.long_axis = (ref.jaw_long_axis - ref.jaw_long_axis.dot(jaw.normal) * jaw.normal).normalized();
+  physics::JawSubgridSettings settings;
+  settings.patch_radius_m = 1e-3 * static_cast<double>(state.range(1));
+  physics::JawSubgridCompliance c;
+  for (auto _ : state)
+    c = physics::ComputeJawSubgridCompliance(mesh, boundary, physics::ElasticMaterial{2300.0, 0.45, 1000.0}, jaw,
+                                             settings);
+  state.counters["patch_tets"] = c.patch_tets;
+  state.counters["patch_dofs"] = c.patch_dofs;
+}
+BENCHMARK(BM_JawSubgridCompliance)->ArgsProduct({{1000}, {10, 15, 20}})->Unit(benchmark::kMillisecond);
 
 void BM_ElementStepCost(benchmark::State& state) {
   const physics::TetrahedralMesh mesh = ReadTrainerGallbladder(VESICA_SOURCE_DIR, static_cast<int>(state.range(0)));

@@ -1,7 +1,6 @@
 #include "tools/convergence/gallbladder_grasp_study.h"
 
 #include <Eigen/Cholesky>
-#include <Eigen/CholmodSupport>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 #include <algorithm>
@@ -12,6 +11,7 @@
 #include "app/mesh_io/mesh_io.h"
 #include "physics/fem/elastic_material.h"
 #include "physics/fem/jaw_footprint.h"
+#include "physics/fem/jaw_subgrid_compliance.h"
 #include "physics/fem/quadratic_tet_mesh.h"
 #include "physics/fem/small_strain_stiffness.h"
 #include "physics/mesh/mesh_topology.h"
@@ -25,33 +25,11 @@ Eigen::Vector3d JawNormal(const ToolLoadReference& ref, JawLoad load) {
   return (load == JawLoad::kPress ? -1.0 : 1.0) * ref.prescribed_m.normalized();
 }
 
-// Minimises the elastic energy under C u = g (C: k x 3n) with the held dofs zero: with
-// X = K_ff^-1 C_f^T, the multipliers solve (C X) mu = g, u = X mu, and the jaw's nodal forces on
-// the body are C^T mu.
+// Minimises the elastic energy under C u = g (C: k x 3n) with the held dofs zero: the multipliers
+// solve (C K^-1 C^T) mu = g, and the jaw's nodal forces on the body are C^T mu.
 Eigen::VectorXd SolveWithMultipliers(const Eigen::SparseMatrix<double>& k, const std::vector<bool>& held_dof,
                                      const Eigen::MatrixXd& c, const Eigen::VectorXd& g) {
-  std::vector<int> free_index(held_dof.size(), -1);
-  int n_free = 0;
-  for (size_t i = 0; i < held_dof.size(); ++i)
-    if (!held_dof[i]) free_index[i] = n_free++;
-  std::vector<Eigen::Triplet<double>> kept;
-  kept.reserve(static_cast<size_t>(k.nonZeros()));
-  for (int col = 0; col < k.outerSize(); ++col)
-    for (Eigen::SparseMatrix<double>::InnerIterator e(k, col); e; ++e) {
-      const int r = free_index[static_cast<size_t>(e.row())], q = free_index[static_cast<size_t>(e.col())];
-      if (r >= 0 && q >= 0 && r >= q) kept.emplace_back(r, q, e.value());  // the lower triangle
-    }
-  Eigen::SparseMatrix<double> k_ff(n_free, n_free);
-  k_ff.setFromTriplets(kept.begin(), kept.end());
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> cholesky(k_ff);
-  if (cholesky.info() != Eigen::Success)
-    throw std::runtime_error("gallbladder study: the held bed leaves the stiffness singular");
-  Eigen::MatrixXd c_f = Eigen::MatrixXd::Zero(n_free, c.rows());
-  for (size_t i = 0; i < held_dof.size(); ++i)
-    if (free_index[i] >= 0) c_f.row(free_index[i]) = c.col(static_cast<Eigen::Index>(i)).transpose();
-  const Eigen::MatrixXd x = cholesky.solve(c_f);
-  const Eigen::VectorXd mu = (c_f.transpose() * x).ldlt().solve(g);
-  return c.transpose() * mu;
+  return c.transpose() * physics::HeldRowCompliance(k, held_dof, c).ldlt().solve(g);
 }
 
 }  // namespace
@@ -66,6 +44,8 @@ const char* JawModelName(JawModel model) {
       return "footprint, mean and tilt";
     case JawModel::kFootprintCells:
       return "footprint, 4 x 2 cells";
+    case JawModel::kFootprintMeanWithSubgrid:
+      return "footprint, mean, with the subgrid compliance (the trainer)";
   }
   return "?";
 }
@@ -92,7 +72,9 @@ bool InJaw(const Eigen::Vector3d& p, const ToolLoadReference& ref, JawLoad load)
 
 GallbladderGraspResult SolveGallbladderGrasp(const physics::TetrahedralMesh& mesh, const physics::TriangleMesh& liver,
                                              const ToolLoadReference& ref, JawModel jaw_model, JawLoad load,
-                                             TetFormulation formulation) {
+                                             TetFormulation formulation, const physics::JawSubgridSettings& subgrid) {
+  if (jaw_model == JawModel::kFootprintMeanWithSubgrid && formulation != TetFormulation::kLinear)
+    throw std::invalid_argument("SolveGallbladderGrasp: the subgrid compliance corrects the linear tets only");
   const physics::TetBoundary boundary = physics::ExtractBoundary(mesh);
   const Eigen::Vector3d normal = JawNormal(ref, load);
   const physics::ElasticMaterial material{2300.0, 0.45, 1000.0};  // gallbladder paper, Table 1
@@ -202,7 +184,28 @@ GallbladderGraspResult SolveGallbladderGrasp(const physics::TetrahedralMesh& mes
   for (size_t i = 0; i < rows.size(); ++i) c.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
   const Eigen::VectorXd g =
       Eigen::Map<const Eigen::VectorXd>(targets.data(), static_cast<Eigen::Index>(targets.size()));
-  const Eigen::VectorXd jaw_forces = SolveWithMultipliers(k, held_dof, c, g);
+  Eigen::VectorXd jaw_forces;
+  if (jaw_model != JawModel::kFootprintMeanWithSubgrid) {
+    jaw_forces = SolveWithMultipliers(k, held_dof, c, g);
+  } else {
+    // The rows are the footprint's integrals (its area times the mean): the series compliance,
+    // per unit mean displacement, enters scaled by the area squared.
+    physics::RectangularFootprint jaw;
+    jaw.centre_m = ref.centre_m;
+    jaw.normal = normal;
+    jaw.long_axis = (ref.jaw_long_axis - ref.jaw_long_axis.dot(normal) * normal).normalized();
+    jaw.length_m = kJawLength_m;
+    jaw.width_m = kJawWidth_m;
+    const physics::JawSubgridCompliance sub =
+        physics::ComputeJawSubgridCompliance(mesh, boundary, material, jaw, subgrid);
+    const double area = physics::ComputeFootprintWeights(boundary, jaw).area_m2;
+    Eigen::MatrixXd w = physics::HeldRowCompliance(k, held_dof, c);
+    if (load == JawLoad::kPress)
+      w(0, 0) += area * area * sub.subgrid_normal_m_per_N;
+    else
+      w += area * area * sub.subgrid_m_per_N;
+    jaw_forces = c.transpose() * w.ldlt().solve(g);
+  }
 
   r.nodes = mesh.num_vertices();
   r.dof_nodes = n / 3;

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "physics/fem/jaw_subgrid_compliance.h"
 #include "physics/mesh/tetrahedral_mesh.h"
 #include "physics/mesh/triangle_mesh.h"
 #include "tools/convergence/tool_load_reference.h"
@@ -34,6 +35,10 @@ enum class JawModel {
   /// still independent of the mesh, and closer to the rigid jaw the reference prescribes (whose
   /// traction rises toward the rectangle's edges) than one uniform traction is.
   kFootprintCells,
+  /// The trainer's grasp (physics/fem/jaw_subgrid_compliance.h): kFootprintMean in series with the
+  /// subgrid compliance, the 10-node tets' 4 x 2-cell jaw less the linear tets' mean on the patch
+  /// around the jaw. Linear tets only.
+  kFootprintMeanWithSubgrid,
 };
 
 enum class JawLoad { kPull, kPress };
@@ -63,7 +68,8 @@ bool InJaw(const Eigen::Vector3d& p_m, const ToolLoadReference& ref, JawLoad loa
 GallbladderGraspResult SolveGallbladderGrasp(const physics::TetrahedralMesh& gallbladder,
                                              const physics::TriangleMesh& liver, const ToolLoadReference& ref,
                                              JawModel model = JawModel::kFootprintMean, JawLoad load = JawLoad::kPull,
-                                             TetFormulation formulation = TetFormulation::kLinear);
+                                             TetFormulation formulation = TetFormulation::kLinear,
+                                             const physics::JawSubgridSettings& subgrid = {});
 
 /// data/anatomy/gallbladder_<nodes>.vtu and tests/fem/data/gallbladder_{grasp,press}_reference.txt.
 physics::TetrahedralMesh ReadTrainerGallbladder(const std::string& source_dir, int nodes);
