@@ -24,6 +24,12 @@ void ValidateDissectionSettings(const DissectionSettings& s) {
   Require(s.grasp_reach_m >= 0, "grasp_reach_m", "must be >= 0");
   Require(s.membrane_touch_radius_m > 0, "membrane_touch_radius_m", "must be > 0");
   Require(s.hook_length_m > 0, "hook_length_m", "must be > 0");
+  Require(std::isfinite(s.grasp_jaw_length_m) && s.grasp_jaw_length_m > 0, "grasp_jaw_length_m", "must be > 0");
+  Require(std::isfinite(s.grasp_jaw_width_m) && s.grasp_jaw_width_m > 0, "grasp_jaw_width_m", "must be > 0");
+  Require(std::isfinite(s.grasp_subgrid_patch_radius_m) && s.grasp_subgrid_patch_radius_m > 0,
+          "grasp_subgrid_patch_radius_m", "must be > 0");
+  Require(s.grasp_subgrid_adopt_steps >= 0, "grasp_subgrid_adopt_steps", "must be >= 0");
+  Require(s.grasp_subgrid_ramp_steps >= 1, "grasp_subgrid_ramp_steps", "must be >= 1");
   Require(s.compliance_refresh_steps >= 1, "compliance_refresh_steps", "must be >= 1");
   Require(s.compliance_adopt_steps >= 0 && s.compliance_adopt_steps < s.compliance_refresh_steps,
           "compliance_adopt_steps", "must be >= 0 and < compliance_refresh_steps");
@@ -68,7 +74,8 @@ std::shared_ptr<const DissectionModel> BuildDissectionModel(const DissectionMode
       PrecomputeBemModel(in.liver_surface, in.liver_material, in.liver_source, in.liver_bem));
   FemSettings gb = in.gallbladder;
   gb.time_step_s = in.settings.time_step_s;
-  model->gallbladder = std::make_shared<const FemModel>(BuildFemModel(in.gallbladder_mesh, gb, {}));
+  model->gallbladder =
+      std::make_shared<const FemModel>(BuildFemModel(in.gallbladder_mesh, gb, in.gallbladder_fixed_nodes));
   model->gallbladder_boundary = ExtractBoundary(in.gallbladder_mesh);
   model->retraction = MakeAssistantRetraction(in.gallbladder_mesh, in.settings.assistant_retraction);
   model->toward_liver = DirectionTowardBed(in.liver_surface, in.gallbladder_mesh);

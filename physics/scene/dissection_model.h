@@ -38,6 +38,9 @@ struct DissectionModelInputs {
   TetrahedralMesh gallbladder_mesh;
   std::string gallbladder_source;
   FemSettings gallbladder;  ///< its time step is replaced by settings.time_step_s
+  /// Gallbladder nodes held in place (none in the trainer, whose gallbladder hangs by the
+  /// springs; a held bed compares the scene with a clamped reference, docs/fidelity.md).
+  std::vector<DirichletNode> gallbladder_fixed_nodes;
   std::array<InstrumentMount, 2> instruments;
   DissectionSettings settings;
   StaticObstacles obstacles;  ///< the solid context organs (none: the gallbladder rests on nothing but the liver)

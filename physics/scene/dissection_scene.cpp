@@ -32,6 +32,16 @@ struct DissectionScene::Row {
   int normal_offset = 0;                             // kFriction: its normal row is this many rows before it (< 0)
   double friction = 0;                               // kFriction: Coulomb coefficient
   std::shared_ptr<const BemContactLoad> liver_load;  // a tool on the liver: its footprint (else the point)
+  std::shared_ptr<const JawRows> jaw;                // on a jaw's footprint (then not nodes/weights)
+};
+
+// A jaw on the gallbladder (a grasp's three rows, or the closed jaws' press): its rows move the
+// mean of its footprint's nodes, in series with its subgrid compliance (added between rows
+// sharing it).
+struct DissectionScene::JawRows {
+  std::vector<std::pair<int, double>> points;  // volume node, weight (summing to 1)
+  Eigen::Matrix3d subgrid_m_per_N = Eigen::Matrix3d::Zero();
+  double rest_offset_m = 0;  // a press: how far the touched point lies out of the mean at rest
 };
 
 namespace {
@@ -57,7 +67,14 @@ DissectionScene::DissectionScene(std::shared_ptr<const DissectionModel> model)
       gallbladder_compliance_(model_->gallbladder),
       liver_solver_(*model_->liver),
       tissue_(model_->tissue),
-      grasp_(model_->settings.grasp) {
+      grasp_(model_->settings.grasp),
+      grasp_jaw_(
+          model_->gallbladder, model_->gallbladder_boundary,
+          GraspJawSettings{model_->settings.grasp_jaw_length_m, model_->settings.grasp_jaw_width_m,
+                           model_->settings.grasp_subgrid_patch_radius_m, model_->settings.grasp_subgrid_adopt_steps,
+                           model_->settings.grasp_subgrid_ramp_steps}),
+      press_subgrid_(model_->gallbladder, grasp_jaw_.boundary(), model_->settings.grasp_subgrid_patch_radius_m,
+                     model_->settings.grasp_subgrid_adopt_steps) {
   liver_current_ = model_->liver->rest_surface;
   liver_velocity_ = Vertices::Zero(liver_current_.num_vertices(), 3);
   gallbladder_current_ = model_->gallbladder->rest_mesh;
@@ -170,6 +187,16 @@ Eigen::Matrix3d DissectionScene::BlockCompliance(const Row& a, const Row& b) {
   if (a.liver != b.liver) return c;
   if (a.liver && a.liver_load && b.liver_load)
     return ContactLoadCompliance(*model_->liver, *a.liver_load, *b.liver_load);
+  if (a.jaw || b.jaw) {  // a jaw's footprint: every node of it
+    std::vector<std::pair<int, double>> pa, pb;
+    GallbladderPoints(a, pa);
+    GallbladderPoints(b, pb);
+    for (const auto& [node_b, wb] : pb) {
+      const auto& columns = gallbladder_compliance_.NodeColumns(node_b);
+      for (const auto& [node_a, wa] : pa) c += wa * wb * columns.block<3, 3>(3 * node_a, 0);
+    }
+    return c;
+  }
   for (int j = 0; j < 3; ++j) {
     if (b.weights[j] == 0.0) continue;
     if (a.liver) {
@@ -190,6 +217,43 @@ Eigen::Matrix3d DissectionScene::BlockCompliance(const Row& a, const Row& b) {
     }
   }
   return c;
+}
+
+std::shared_ptr<const DissectionScene::JawRows> DissectionScene::PressingJaw(const SurfaceHit& hit,
+                                                                             const Eigen::Vector3d& shaft) {
+  const DissectionSettings& s = model_->settings;
+  const TriangleMesh& rest = model_->gallbladder_boundary.surface;
+  const std::optional<RectangularFootprint> at =
+      JawFootprintAt(rest, hit.triangle, hit.weights, shaft, s.grasp_jaw_length_m, s.grasp_jaw_width_m);
+  if (!at) return nullptr;
+  FootprintWeights footprint;
+  try {
+    footprint = ComputeFootprintWeights(model_->gallbladder_boundary, *at);
+  } catch (const std::invalid_argument&) {
+    return nullptr;  // no surface under the jaw: the touched point presses
+  }
+  auto jaw = std::make_shared<JawRows>();
+  for (size_t i = 0; i < footprint.nodes.size(); ++i)
+    jaw->points.emplace_back(footprint.nodes[i],
+                             footprint.moments(static_cast<Eigen::Index>(i), 0) / footprint.area_m2);
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& [node, w] : jaw->points) mean += w * model_->gallbladder->rest_mesh.vertices.row(node).transpose();
+  jaw->rest_offset_m = at->normal.dot(at->centre_m - mean);
+  int corner = 0;
+  hit.weights.maxCoeff(&corner);
+  const double normal = press_subgrid_.At(rest.triangles(hit.triangle, corner), *at, steps_);
+  jaw->subgrid_m_per_N = normal * hit.normal * hit.normal.transpose();
+  return jaw;
+}
+
+void DissectionScene::GallbladderPoints(const Row& r, std::vector<std::pair<int, double>>& out) const {
+  out.clear();
+  if (r.jaw) {
+    out = r.jaw->points;
+    return;
+  }
+  for (int j = 0; j < 3; ++j)
+    if (r.weights[j] != 0.0) out.emplace_back(r.nodes[static_cast<size_t>(j)], r.weights[j]);
 }
 
 // The obstacle rows are grouped by node (a contact row, then its friction rows), each on one
@@ -389,15 +453,28 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     if (hits[0] && hits[0]->surface == gallbladder_surface_id_ && hit_gap[0] <= s.grasp_reach_m)
       in.hits.push_back(*hits[0]);
     if (grasp_.state() == GraspStateMachine::State::kHolding) {
+      // A jaw holds its footprint's mean, which lags the jaw by the subgrid compliance times the
+      // force: the tissue's give around the jaw, not a slip. So the jaw's held point is the mean
+      // less that lag (for every grasped point).
+      std::optional<Eigen::Vector3d> jaw_held;
+      if (grasp_jaw_.holding()) {
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (size_t i = 0; i < grasp_jaw_.nodes().size(); ++i)
+          mean += grasp_jaw_.weights()[i] * gb_free.row(grasp_jaw_.nodes()[i]).transpose();
+        jaw_held = mean - grasp_jaw_.SubgridAt(steps_) * frames_[0].f_Tool_W;
+      }
       for (size_t k = 0; k < grasp_.points().size(); ++k) {
         in.grasped_positions.push_back(
-            gb_point(grasp_.points()[k].triangle, grasp_.points()[k].weights, gb_surface_free));
+            jaw_held ? *jaw_held : gb_point(grasp_.points()[k].triangle, grasp_.points()[k].weights, gb_surface_free));
         in.constraint_forces.push_back(k < grasp_point_forces_.size() ? grasp_point_forces_[k] : 0.0);
       }
     }
     report.grasp = grasp_.Update(in);
   }
   const bool holding = has_grasper && grasp_.state() == GraspStateMachine::State::kHolding;
+  if (!holding && grasp_jaw_.holding()) grasp_jaw_.Release();
+  if (holding && report.grasp.grasped && s.grasp_holds_jaw_footprint)
+    grasp_jaw_.Take(grasp_.points().front().triangle, grasp_.points().front().weights, dirs[0], steps_);
   lap(report.times.grasp_us);
 
   // 6. Constraint rows and the solve (W + W_soft) lambda + delta = 0.
@@ -411,7 +488,27 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
                                                  : boundary.surface_to_volume[boundary.surface.triangles(triangle, k)];
     return r;
   };
-  if (holding) {
+  if (holding && grasp_jaw_.holding()) {
+    // The jaw holds its footprint's mean: one row per axis for every grasped point together.
+    auto jaw = std::make_shared<JawRows>();
+    for (size_t i = 0; i < grasp_jaw_.nodes().size(); ++i)
+      jaw->points.emplace_back(grasp_jaw_.nodes()[i], grasp_jaw_.weights()[i]);
+    jaw->subgrid_m_per_N = grasp_jaw_.SubgridAt(steps_);
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    for (const auto& [node, w] : jaw->points) p += w * gb_free.row(node).transpose();
+    for (int axis = 0; axis < 3; ++axis) {
+      Row r;
+      r.liver = false;
+      r.jaw = jaw;
+      r.direction = Eigen::Vector3d::Unit(axis);
+      r.gap = r.direction.dot(tips_[0] - p);  // not clamped: that would cap the hold force
+      r.kind = ConstraintKind::kBilateral;
+      r.soft = s.grasp_compliance_m_per_N;
+      r.instrument = 0;
+      r.grasp_point = 0;
+      rows.push_back(r);
+    }
+  } else if (holding) {
     for (size_t k = 0; k < grasp_.points().size(); ++k) {
       const GraspPoint& g = grasp_.points()[k];
       const Eigen::Vector3d p = gb_point(g.triangle, g.weights, gb_surface_free);
@@ -437,7 +534,20 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
       r.liver_load = std::make_shared<const BemContactLoad>(
           MakeToolContactLoad(liver, hits[i]->triangle, hits[i]->weights, hits[i]->normal, footprint_m));
     r.direction = hits[i]->normal;
+    if (!r.liver && i == 0 && model_->instruments[i].role == InstrumentRole::kGrasper &&
+        s.grasper_presses_jaw_footprint && poses[i].jaw_angle_rad <= s.grasp.close_angle)
+      r.jaw = PressingJaw(*hits[i], dirs[i]);
     r.gap = std::max(hit_gap[i], -s.max_correction_per_step_m);
+    if (r.jaw) {
+      // The jaw presses its footprint's mean (where its rows' compliance acts), measured from
+      // where the mean lies under the touched point at rest. The series part of the gap the
+      // last step's force keeps open is not a penetration to be limited.
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (const auto& [node, w] : r.jaw->points) mean += w * gb_free.row(node).transpose();
+      const double series =
+          r.direction.dot(r.jaw->subgrid_m_per_N * r.direction) * std::max(0.0, frames_[i].f_Tool_W.dot(r.direction));
+      r.gap = std::max(r.direction.dot(tips_[i] - mean) - r.jaw->rest_offset_m, -s.max_correction_per_step_m - series);
+    }
     r.kind = ConstraintKind::kUnilateral;
     r.soft = s.contact_compliance_m_per_N;
     r.instrument = static_cast<int>(i);
@@ -464,15 +574,16 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     // An obstacle's contact and friction rows share their node: consecutive rows b on the same
     // points as the one before reuse its block (the same numbers, computed once).
     const Row* block_of = nullptr;
-    Eigen::Matrix3d block;
+    Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
     for (Eigen::Index b = a; b < m; ++b) {
       const Row& rb = rows[static_cast<size_t>(b)];
       if (block_of == nullptr || block_of->liver != rb.liver || block_of->nodes != rb.nodes ||
-          block_of->weights != rb.weights) {
+          block_of->weights != rb.weights || block_of->jaw != rb.jaw) {
         block = BlockCompliance(ra, rb);
         block_of = &rb;
       }
-      const double w = ra.direction.dot(block * rb.direction);
+      double w = ra.direction.dot(block * rb.direction);
+      if (ra.jaw && ra.jaw == rb.jaw) w += ra.direction.dot(ra.jaw->subgrid_m_per_N * rb.direction);  // in series
       problem.delassus(a, b) = w;
       problem.delassus(b, a) = w;
     }
@@ -517,6 +628,11 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     const Eigen::Vector3d force = -r.direction * lambda[a];
     if (r.liver_load) {
       AddContactLoadResponse(liver, *r.liver_load, force, du_liver);
+      continue;
+    }
+    if (r.jaw) {
+      for (const auto& [node, w] : r.jaw->points)
+        du_gb.noalias() += gallbladder_compliance_.NodeColumns(node) * (w * force);
       continue;
     }
     for (int j = 0; j < 3; ++j) {
@@ -568,6 +684,8 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
       double& f = grasp_point_forces_[static_cast<size_t>(r.grasp_point)];
       f = std::hypot(f, lambda[a]);
     }
+    if (r.jaw && r.kind == ConstraintKind::kBilateral)  // the jaw's force holds every grasped point
+      for (size_t k = 1; k < grasp_point_forces_.size(); ++k) grasp_point_forces_[k] = grasp_point_forces_[0];
     if (lambda[a] > 0.0 || r.kind == ConstraintKind::kBilateral) active[static_cast<size_t>(r.instrument)].push_back(a);
   }
   // W + W_soft of the tools' rows (the obstacle rows, hundreds after the freeing, are not needed).

@@ -27,7 +27,9 @@
 #include "physics/scene/constraint_solver.h"
 #include "physics/scene/dissection_model.h"
 #include "physics/scene/fem_rest_compliance.h"
+#include "physics/scene/grasp_jaw.h"
 #include "physics/scene/haptic_contact_frame.h"
+#include "physics/scene/jaw_press_subgrid.h"
 
 namespace vesica::physics {
 
@@ -94,6 +96,8 @@ class DissectionScene {
   long steps() const { return steps_; }
   const ConnectiveTissue& tissue() const { return tissue_; }
   const GraspStateMachine& grasp() const { return grasp_; }
+  /// The footprint a grasp holds and its subgrid compliance (DissectionSettings::grasp_holds_jaw_footprint).
+  const GraspJaw& grasp_jaw() const { return grasp_jaw_; }
   bool gallbladder_free() const { return tissue_.num_alive() == 0; }
 
   /// Current liver surface vertices (#V x 3) and gallbladder boundary vertices (boundary numbering).
@@ -111,10 +115,16 @@ class DissectionScene {
 
  private:
   struct Row;
+  struct JawRows;
   // The springs alive now -> the gallbladder's implicit system and the constraint compliance
   // (on a worker thread when `in_background`, adopted compliance_adopt_steps later).
   void UpdateAttachments(bool in_background);
   Eigen::Matrix3d BlockCompliance(const Row& a, const Row& b);
+  // The closed jaws' footprint where the grasper presses the gallbladder at `hit` (rest frame),
+  // with the press's subgrid compliance along the hit's normal; null where none can be formed.
+  std::shared_ptr<const JawRows> PressingJaw(const SurfaceHit& hit, const Eigen::Vector3d& shaft);
+  // The gallbladder volume nodes and weights a row's tissue point is the weighted sum of.
+  void GallbladderPoints(const Row& r, std::vector<std::pair<int, double>>& out) const;
   // One-sided rows for the gallbladder's surface nodes (at their free positions) within the margin
   // of a static obstacle or of the liver's free surface, each pressed one followed by its two
   // friction rows (which hold it at its position at the step's start).
@@ -128,6 +138,8 @@ class DissectionScene {
   BemCapacitanceSolver liver_solver_;
   ConnectiveTissue tissue_;
   GraspStateMachine grasp_;
+  GraspJaw grasp_jaw_;             // the footprint a grasp holds and its subgrid compliance
+  JawPressSubgrid press_subgrid_;  // the closed jaws' press on the gallbladder, per surface vertex
   SurfaceRayCaster caster_;
   int liver_surface_id_ = -1, gallbladder_surface_id_ = -1;
   TetrahedralMesh gallbladder_current_;  // rest topology, current vertices

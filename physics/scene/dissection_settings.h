@@ -30,6 +30,24 @@ struct DissectionSettings {
   double attach_offset_m = 0.005;                    ///< paper §2.4: gallbladder offset toward the liver, > 0
   GraspSettings grasp;
   double grasp_compliance_m_per_N = 2e-3;  ///< W_soft of grasp rows (eq. 6): jaws and tissue give, >= 0
+  /// The grasper holds its jaw's footprint (issue 37), a grasp_jaw_length_m x grasp_jaw_width_m
+  /// rectangle centred on the touched point, long side along the shaft, as its mean
+  /// (physics/fem/jaw_footprint.h), not the touched point alone (whose force follows the mesh);
+  /// in series with the tissue's give under the jaw that the linear tets miss
+  /// (physics/fem/jaw_subgrid_compliance.h: 28 % of the force on the trainer's gallbladder).
+  /// That compliance is computed on a worker thread when the jaws close (0.1-0.3 s), adopted
+  /// grasp_subgrid_adopt_steps later (a fixed step, so replays stay bit-identical; the step waits
+  /// only if the worker is slower) and ramped in over grasp_subgrid_ramp_steps.
+  bool grasp_holds_jaw_footprint = true;
+  /// The closed jaws pressing the gallbladder press that footprint too (frictionless: its normal
+  /// row), in series with the press's subgrid compliance, kept per surface vertex as computed
+  /// (physics/scene/jaw_press_subgrid.h); open jaws and the hook press by the touched point.
+  bool grasper_presses_jaw_footprint = true;
+  double grasp_jaw_length_m = 0.010;            ///< > 0
+  double grasp_jaw_width_m = 0.005;             ///< > 0
+  double grasp_subgrid_patch_radius_m = 0.015;  ///< > 0; 0.015 is within 1 % of 0.025 (fidelity.md)
+  int grasp_subgrid_adopt_steps = 60;           ///< >= 0 (0: computed within the grasping step)
+  int grasp_subgrid_ramp_steps = 20;            ///< >= 1
   /// W_soft of contact rows, > 0: the instrument tip and the tissue's surface layer give a little
   /// (10 kN/m), which also keeps a contact on the liver's fixed region (no compliance) solvable.
   double contact_compliance_m_per_N = 1e-4;
