@@ -12,10 +12,9 @@
 #include "app/calot/case_outcome.h"
 #include "app/render/scene_meshes.h"
 #include "app/replay/calot_scripted_surgeon.h"
+#include "app/replay/script_recording.h"
 #include "app/scenario/scenario_loader.h"
 #include "app/session/dissection_setup.h"
-#include "device/input/input_recorder.h"
-#include "device/input/input_recording.h"
 
 int main(int argc, char** argv) {
   using vesica::app::CalotScript;
@@ -31,10 +30,7 @@ int main(int argc, char** argv) {
   cli.add_option("-s,--scenario", scenario_path, "Calot scenario file (TOML, with [calot_triangle])")->required();
   cli.add_option("--script", script, "what the surgeon does")->transform(CLI::CheckedTransformer(scripts));
   cli.add_option("-o,--output", out, "recording to write");
-  cli.add_option("--every", every, "keep every N-th physics step's input (replay interpolates)")
-      ->check(CLI::Range(1, 100))
-      ->capture_default_str();
-  cli.add_option("--max-s", max_s, "give up after this much session time")->capture_default_str();
+  vesica::app::AddScriptRunOptions(cli, every, max_s);
   CLI11_PARSE(cli, argc, argv);
   try {
     const vesica::app::Scenario scenario = vesica::app::LoadScenario(scenario_path);
@@ -50,12 +46,7 @@ int main(int argc, char** argv) {
     settings.max_session_s = max_s;
     settings.scope_eye_W = setup->camera.p_Eye_W_m;
     const auto frames = vesica::app::RunScriptedCalot(session, script, settings);
-    if (!out.empty()) {
-      vesica::device::InputRecorder recorder(scenario.name);
-      for (size_t i = 0; i < frames.size(); ++i)
-        if (i % static_cast<size_t>(every) == 0 || i + 1 == frames.size()) recorder.Append(frames[i]);
-      vesica::device::WriteInputRecording(out, recorder.recording());
-    }
+    if (!out.empty()) vesica::app::WriteScriptRecording(out, scenario.name, frames, every);
     const vesica::app::calot::CaseOutcome outcome = vesica::app::calot::JudgeCase(*session.calot_metrics());
     std::printf("%s, %s: %zu steps, %.2f s: %s\n", scenario_path.c_str(), vesica::app::CalotScriptName(script).c_str(),
                 frames.size(), session.time_s(), vesica::app::calot::OutcomeHeadline(outcome).c_str());

@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "app/replay/script_geometry.h"
 #include "physics/collision/surface_ray_caster.h"
 
 namespace vesica::app {
@@ -23,32 +24,6 @@ constexpr double kJawOpen_rad = 0.5;
 constexpr double kSpreadClosed_rad = 0.12;  // just open: the jaws straddle a tube instead of pushing it
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDwell_s = 0.05;  // still before and after every switch (jaws, pedal, tool)
-
-Vec3 MoveToward(const Vec3& from, const Vec3& to, double max_step) {
-  const Vec3 d = to - from;
-  const double n = d.norm();
-  return n <= max_step ? to : Vec3(from + d * (max_step / n));
-}
-
-physics::InstrumentPose PoseFor(const physics::InstrumentMount& m, const Vec3& tip, double jaw_rad) {
-  physics::InstrumentPose p =
-      physics::AimAt(m.p_RemoteCentre_W, tip, (tip - m.p_RemoteCentre_W).norm(), m.reference_direction_W);
-  p.jaw_angle_rad = jaw_rad;
-  return p;
-}
-
-// Outward vertex normals of a closed surface at positions x.
-physics::Vertices VertexNormals(const physics::TriangleMesh& surface, const physics::Vertices& x) {
-  physics::Vertices n = physics::Vertices::Zero(x.rows(), 3);
-  for (int f = 0; f < surface.num_triangles(); ++f) {
-    const Vec3 a = x.row(surface.triangles(f, 0)), b = x.row(surface.triangles(f, 1)),
-               c = x.row(surface.triangles(f, 2));
-    const Vec3 fn = (b - a).cross(c - a);
-    for (int k = 0; k < 3; ++k) n.row(surface.triangles(f, k)) += fn.transpose();
-  }
-  n.rowwise().normalize();
-  return n;
-}
 
 // The liver and the gallbladder as they are now, for straight paths and lines of sight.
 class OrganSight {

@@ -10,11 +10,10 @@
 
 #include "app/render/scene_meshes.h"
 #include "app/render/scope_pose.h"
+#include "app/replay/script_recording.h"
 #include "app/replay/scripted_surgeon.h"
 #include "app/scenario/scenario_loader.h"
 #include "app/session/dissection_setup.h"
-#include "device/input/input_recorder.h"
-#include "device/input/input_recording.h"
 
 int main(int argc, char** argv) {
   CLI::App cli{"Vesica: record the scripted dissection"};
@@ -23,10 +22,7 @@ int main(int argc, char** argv) {
   double max_s = 240;
   cli.add_option("-s,--scenario", scenario_path, "scenario file (TOML)")->capture_default_str();
   cli.add_option("-o,--output", out, "recording to write")->required();
-  cli.add_option("--every", every, "keep every N-th physics step's input (replay interpolates)")
-      ->check(CLI::Range(1, 100))
-      ->capture_default_str();
-  cli.add_option("--max-s", max_s, "give up after this much session time")->capture_default_str();
+  vesica::app::AddScriptRunOptions(cli, every, max_s);
   CLI11_PARSE(cli, argc, argv);
   try {
     const vesica::app::Scenario scenario = vesica::app::LoadScenario(scenario_path);
@@ -37,14 +33,11 @@ int main(int argc, char** argv) {
     settings.max_session_s = max_s;
     settings.scope_eye_W = vesica::app::ScopePoseOf(scenario.laparoscope).eye_W;
     const auto frames = vesica::app::RunScriptedDissection(session, settings);
-    vesica::device::InputRecorder recorder(scenario.name);
-    for (size_t i = 0; i < frames.size(); ++i)
-      if (i % static_cast<size_t>(every) == 0 || i + 1 == frames.size()) recorder.Append(frames[i]);
-    vesica::device::WriteInputRecording(out, recorder.recording());
+    const std::size_t written = vesica::app::WriteScriptRecording(out, scenario.name, frames, every);
     const auto m = session.metrics();
     std::printf("%s: %zu frames, %.2f s; gallbladder free %s, springs cut %d of %d, slips %d, max force %.2f N\n",
-                out.c_str(), recorder.recording().frames.size(), m.duration_s, m.gallbladder_free ? "yes" : "no",
-                m.springs_cut, m.springs_total, m.slips, m.max_force_N);
+                out.c_str(), written, m.duration_s, m.gallbladder_free ? "yes" : "no", m.springs_cut, m.springs_total,
+                m.slips, m.max_force_N);
     return m.gallbladder_free ? 0 : 1;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());

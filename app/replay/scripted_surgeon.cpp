@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "app/replay/script_geometry.h"
 #include "physics/collision/surface_ray_caster.h"
 #include "physics/tissue/connective_tissue.h"
 
@@ -15,32 +16,6 @@ namespace vesica::app {
 
 namespace {
 using Vec3 = Eigen::Vector3d;
-
-Vec3 MoveToward(const Vec3& from, const Vec3& to, double max_step) {
-  const Vec3 d = to - from;
-  const double n = d.norm();
-  return n <= max_step ? to : Vec3(from + d * (max_step / n));
-}
-
-physics::InstrumentPose PoseFor(const physics::InstrumentMount& m, const Vec3& tip, double jaw) {
-  physics::InstrumentPose p =
-      physics::AimAt(m.p_RemoteCentre_W, tip, (tip - m.p_RemoteCentre_W).norm(), m.reference_direction_W);
-  p.jaw_angle_rad = jaw;
-  return p;
-}
-
-// Outward vertex normals of the gallbladder's boundary at the current positions.
-physics::Vertices VertexNormals(const physics::TriangleMesh& surface, const physics::Vertices& x) {
-  physics::Vertices n = physics::Vertices::Zero(x.rows(), 3);
-  for (int f = 0; f < surface.num_triangles(); ++f) {
-    const Vec3 a = x.row(surface.triangles(f, 0)), b = x.row(surface.triangles(f, 1)),
-               c = x.row(surface.triangles(f, 2));
-    const Vec3 fn = (b - a).cross(c - a);
-    for (int k = 0; k < 3; ++k) n.row(surface.triangles(f, k)) += fn.transpose();
-  }
-  n.rowwise().normalize();
-  return n;
-}
 
 // Taking hold of the gallbladder at one surface vertex: move to just outside it, keep still for
 // kDwell, close the jaws, keep still for kDwell, then check the hold. Every event sits between

@@ -238,12 +238,7 @@ TEST_P(CalotFirstFrame, TheCysticDuctShowsWhereTheFatOnItsSightLinesIsCleared) {
 INSTANTIATE_TEST_SUITE_P(Variants, CalotFirstFrame,
                          ::testing::Values("calot-standard.toml", "calot-short-duct.toml", "calot-low-insertion.toml",
                                            "calot-anterior-artery.toml"),
-                         [](const ::testing::TestParamInfo<const char*>& param) {
-                           std::string name = fs::path(param.param).stem().string().substr(6);  // past "calot-"
-                           for (char& c : name)
-                             if (c == '-') c = '_';
-                           return name;
-                         });
+                         testing::CalotVariantName);
 
 }  // namespace
 }  // namespace vesica::app

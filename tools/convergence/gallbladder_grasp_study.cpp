@@ -25,6 +25,17 @@ Eigen::Vector3d JawNormal(const ToolLoadReference& ref, JawLoad load) {
   return (load == JawLoad::kPress ? -1.0 : 1.0) * ref.prescribed_m.normalized();
 }
 
+// The reference's jaw: its rectangle at its centre, the long side in the plane of `normal`.
+physics::RectangularFootprint ReferenceJaw(const ToolLoadReference& ref, const Eigen::Vector3d& normal) {
+  physics::RectangularFootprint jaw;
+  jaw.centre_m = ref.centre_m;
+  jaw.normal = normal;
+  jaw.long_axis = (ref.jaw_long_axis - ref.jaw_long_axis.dot(normal) * normal).normalized();
+  jaw.length_m = kJawLength_m;
+  jaw.width_m = kJawWidth_m;
+  return jaw;
+}
+
 // Minimises the elastic energy under C u = g (C: k x 3n) with the held dofs zero: the multipliers
 // solve (C K^-1 C^T) mu = g, and the jaw's nodal forces on the body are C^T mu.
 Eigen::VectorXd SolveWithMultipliers(const Eigen::SparseMatrix<double>& k, const std::vector<bool>& held_dof,
@@ -140,12 +151,7 @@ GallbladderGraspResult SolveGallbladderGrasp(const physics::TetrahedralMesh& mes
       }
     r.jaw_nodes = static_cast<int>(inside.size());
   } else {
-    physics::RectangularFootprint jaw;
-    jaw.centre_m = ref.centre_m;
-    jaw.normal = normal;
-    jaw.long_axis = (ref.jaw_long_axis - ref.jaw_long_axis.dot(normal) * normal).normalized();
-    jaw.length_m = kJawLength_m;
-    jaw.width_m = kJawWidth_m;
+    const physics::RectangularFootprint jaw = ReferenceJaw(ref, normal);
     // The footprints whose weighted mean the jaw moves: the rectangle, or each cell of its grid.
     std::vector<physics::RectangularFootprint> cells;
     const int cells_along = jaw_model == JawModel::kFootprintCells ? 4 : 1;
@@ -190,12 +196,7 @@ GallbladderGraspResult SolveGallbladderGrasp(const physics::TetrahedralMesh& mes
   } else {
     // The rows are the footprint's integrals (its area times the mean): the series compliance,
     // per unit mean displacement, enters scaled by the area squared.
-    physics::RectangularFootprint jaw;
-    jaw.centre_m = ref.centre_m;
-    jaw.normal = normal;
-    jaw.long_axis = (ref.jaw_long_axis - ref.jaw_long_axis.dot(normal) * normal).normalized();
-    jaw.length_m = kJawLength_m;
-    jaw.width_m = kJawWidth_m;
+    const physics::RectangularFootprint jaw = ReferenceJaw(ref, normal);
     const physics::JawSubgridCompliance sub =
         physics::ComputeJawSubgridCompliance(mesh, boundary, material, jaw, subgrid);
     const double area = physics::ComputeFootprintWeights(boundary, jaw).area_m2;
