@@ -22,10 +22,42 @@ struct ProjectedSample {
   double radius_px = 0;
 };
 
+// Shortest distance between segments [p0, p1] and [q0, q1] (closest points clamped to both).
+inline double SegmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+                              const Eigen::Vector3d& q1) {
+  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r), c = d1.dot(r), b = d1.dot(d2);
+  const double denom = a * e - b * b;
+  double s = denom > 1e-18 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+  double t = (b * s + f) / e;
+  if (t < 0.0) {
+    t = 0.0, s = std::clamp(-c / a, 0.0, 1.0);
+  } else if (t > 1.0) {
+    t = 1.0, s = std::clamp((b - c) / a, 0.0, 1.0);
+  }
+  return (p0 + s * d1 - (q0 + t * d2)).norm();
+}
+
+// Whether the sight segment [eye, target] passes through a drawn instrument: its shaft from the
+// remote centre to the jaws' hinge (the scenario's shaft radius), the jaws over the last 18 mm
+// (1.6 shaft radii wide: app/render/instrument_actors.cpp).
+inline bool BehindAnInstrument(const Scenario& scenario, const physics::DissectionModel& model,
+                               const DissectionSession& session, const Eigen::Vector3d& eye,
+                               const Eigen::Vector3d& target) {
+  for (std::size_t i = 0; i < model.instruments.size() && i < scenario.instruments.size(); ++i) {
+    const Eigen::Vector3d rc = model.instruments[i].p_RemoteCentre_W;
+    const Eigen::Vector3d tip = session.scene().tool_tip(static_cast<int>(i));
+    const double r = scenario.instruments[i].shaft_radius_m;
+    const Eigen::Vector3d hinge = tip - 0.018 * (tip - rc).normalized();
+    if (SegmentDistance(eye, target, rc, hinge) < r || SegmentDistance(eye, target, hinge, tip) < 1.6 * r) return true;
+  }
+  return false;
+}
+
 // Samples every 0.5 mm along the tube, each seen when it projects into the width x height
 // picture, the segment from the scope's eye to its near wall crosses neither the liver nor the
-// gallbladder as they are now, and passes no intact fat cell within half a cell. Returns each
-// seen sample's pixel and its projected radius (px).
+// gallbladder as they are now, nor a drawn instrument, and passes no intact fat cell within half a
+// cell. Returns each seen sample's pixel and its projected radius (px).
 inline std::vector<ProjectedSample> SeenSamples(const Scenario& scenario, const physics::DissectionModel& model,
                                                 const DissectionSession& session, int tube, int width = 1280,
                                                 int height = 720) {
@@ -48,6 +80,7 @@ inline std::vector<ProjectedSample> SeenSamples(const Scenario& scenario, const 
     // Up to the tube's near wall, so the tube's own surface does not count.
     const Eigen::Vector3d wall = p - radius_m * (p - camera.eye).normalized();
     if (organs.FirstHit(physics::ToolSegment{camera.eye, wall})) continue;
+    if (BehindAnInstrument(scenario, model, session, camera.eye, wall)) continue;
     bool under_fat = false;
     for (std::size_t k = 0; k < fat.cells().size() && !under_fat; ++k) {
       if (fat.cells()[k].state != physics::calot::FatCellState::kIntact) continue;

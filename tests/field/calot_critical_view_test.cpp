@@ -4,14 +4,12 @@
 // step the session first judges the critical view reached, the laparoscope's picture is drawn at
 // 1280 x 720 and compared with an independent projection of the model's tubes
 // (tests/calot_scripted/calot_seen_samples.h: the test's pinhole, rays past the liver, the
-// gallbladder and every intact fat cell): the cystic duct and the cystic artery each have samples
-// in sight apart from the other's (their projected discs do not overlap), and there the picture
-// shows each in its own colour (grey-green duct, red artery), not fat.
-// Not the short cystic duct: there the session judges the view reached while the 8 mm duct is
-// seen apart from the artery, which crosses in front of it at the neck, over 1.5 mm only (3 of 16
-// samples; the scripted sessions' test finds a fifth of it apart only after the division). That
-// is a finding about the critical view's third criterion (docs/calot-training.md), not hidden by
-// a lower bar here.
+// gallbladder, every intact fat cell and the drawn instruments): the cystic duct and the cystic artery each have
+// samples in sight apart from the other's (their projected discs do not overlap), and there the picture shows each in
+// its own colour (grey-green duct, red artery), not fat. Not the short cystic duct: there the session judges the view
+// reached while the 8 mm duct is seen apart from the artery, which crosses in front of it at the neck, over 1.5 mm only
+// (3 of 16 samples; the scripted sessions' test finds a fifth of it apart only after the division). That is a finding
+// about the critical view's third criterion (docs/calot-training.md), not hidden by a lower bar here.
 // VESICA_CALOT_CRITICAL_VIEW_PNG_DIR=dir saves each variant's picture, to look at.
 
 #include <gtest/gtest.h>
@@ -105,12 +103,7 @@ TEST_P(CalotCriticalView, ShowsTheCysticDuctAndArteryEachApartInItsOwnColour) {
 INSTANTIATE_TEST_SUITE_P(Variants, CalotCriticalView,
                          ::testing::Values("calot-standard.toml", "calot-low-insertion.toml",
                                            "calot-anterior-artery.toml"),
-                         [](const ::testing::TestParamInfo<const char*>& param) {
-                           std::string name = fs::path(param.param).stem().string().substr(6);  // past "calot-"
-                           for (char& c : name)
-                             if (c == '-') c = '_';
-                           return name;
-                         });
+                         testing::CalotVariantName);
 
 }  // namespace
 }  // namespace vesica::app
