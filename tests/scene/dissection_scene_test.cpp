@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 
@@ -346,6 +347,22 @@ TEST(DissectionModelTest, BadSettingsAndMissingBedAreNamed) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("compliance_adopt_steps"), std::string::npos) << e.what();
   }
+  // The grasp's jaw (issue 37), each field by name.
+  const auto jaw_field_named = [](const std::string& field, const std::function<void(DissectionSettings&)>& spoil) {
+    DissectionModelInputs bad = testing::SyntheticDissectionInputs();
+    spoil(bad.settings);
+    try {
+      BuildDissectionModel(bad);
+      ADD_FAILURE() << field;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  };
+  jaw_field_named("grasp_jaw_length_m", [](DissectionSettings& s) { s.grasp_jaw_length_m = 0; });
+  jaw_field_named("grasp_jaw_width_m", [](DissectionSettings& s) { s.grasp_jaw_width_m = std::nan(""); });
+  jaw_field_named("grasp_subgrid_patch_radius_m", [](DissectionSettings& s) { s.grasp_subgrid_patch_radius_m = -1; });
+  jaw_field_named("grasp_subgrid_adopt_steps", [](DissectionSettings& s) { s.grasp_subgrid_adopt_steps = -1; });
+  jaw_field_named("grasp_subgrid_ramp_steps", [](DissectionSettings& s) { s.grasp_subgrid_ramp_steps = 0; });
   in = testing::SyntheticDissectionInputs();
   in.liver_surface.vertex_labels = in.liver_surface.vertex_labels.unaryExpr([](int l) { return l & kLabelFixed; });
   EXPECT_THROW(BuildDissectionModel(in), std::invalid_argument);
