@@ -42,6 +42,8 @@ struct DissectionScene::JawRows {
   std::vector<std::pair<int, double>> points;  // volume node, weight (summing to 1)
   Eigen::Matrix3d subgrid_m_per_N = Eigen::Matrix3d::Zero();
   double rest_offset_m = 0;  // a press: how far the touched point lies out of the mean at rest
+  // A grasp: C J^T for its load (grasp_jaw_columns_), one solve instead of a column per node.
+  const Eigen::Matrix<double, Eigen::Dynamic, 3>* columns = nullptr;
 };
 
 namespace {
@@ -191,6 +193,15 @@ Eigen::Matrix3d DissectionScene::BlockCompliance(const Row& a, const Row& b) {
     std::vector<std::pair<int, double>> pa, pb;
     GallbladderPoints(a, pa);
     GallbladderPoints(b, pb);
+    // With the load's columns X = C J^T: C(p_a, jaw) = sum_a w_a X(a), C(jaw, p_b) = its transpose.
+    if (b.jaw && b.jaw->columns) {
+      for (const auto& [node_a, wa] : pa) c += wa * b.jaw->columns->block<3, 3>(3 * node_a, 0);
+      return c;
+    }
+    if (a.jaw && a.jaw->columns) {
+      for (const auto& [node_b, wb] : pb) c += wb * a.jaw->columns->block<3, 3>(3 * node_b, 0).transpose();
+      return c;
+    }
     for (const auto& [node_b, wb] : pb) {
       const auto& columns = gallbladder_compliance_.NodeColumns(node_b);
       for (const auto& [node_a, wa] : pa) c += wa * wb * columns.block<3, 3>(3 * node_a, 0);
@@ -473,8 +484,9 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
   }
   const bool holding = has_grasper && grasp_.state() == GraspStateMachine::State::kHolding;
   if (!holding && grasp_jaw_.holding()) grasp_jaw_.Release();
-  if (holding && report.grasp.grasped && s.grasp_holds_jaw_footprint)
-    grasp_jaw_.Take(grasp_.points().front().triangle, grasp_.points().front().weights, dirs[0], steps_);
+  if (holding && report.grasp.grasped && s.grasp_holds_jaw_footprint &&
+      grasp_jaw_.Take(grasp_.points().front().triangle, grasp_.points().front().weights, dirs[0], steps_))
+    grasp_jaw_take_step_ = steps_;
   lap(report.times.grasp_us);
 
   // 6. Constraint rows and the solve (W + W_soft) lambda + delta = 0.
@@ -494,6 +506,13 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     for (size_t i = 0; i < grasp_jaw_.nodes().size(); ++i)
       jaw->points.emplace_back(grasp_jaw_.nodes()[i], grasp_jaw_.weights()[i]);
     jaw->subgrid_m_per_N = grasp_jaw_.SubgridAt(steps_);
+    if (grasp_jaw_columns_take_ != grasp_jaw_take_step_ ||
+        grasp_jaw_columns_factorization_ != gallbladder_compliance_.factorizations()) {
+      grasp_jaw_columns_ = gallbladder_compliance_.LoadColumns(jaw->points);
+      grasp_jaw_columns_take_ = grasp_jaw_take_step_;
+      grasp_jaw_columns_factorization_ = gallbladder_compliance_.factorizations();
+    }
+    jaw->columns = &grasp_jaw_columns_;
     Eigen::Vector3d p = Eigen::Vector3d::Zero();
     for (const auto& [node, w] : jaw->points) p += w * gb_free.row(node).transpose();
     for (int axis = 0; axis < 3; ++axis) {
@@ -628,6 +647,10 @@ DissectionStepReport DissectionScene::Step(const std::array<InstrumentPose, 2>& 
     const Eigen::Vector3d force = -r.direction * lambda[a];
     if (r.liver_load) {
       AddContactLoadResponse(liver, *r.liver_load, force, du_liver);
+      continue;
+    }
+    if (r.jaw && r.jaw->columns) {
+      du_gb.noalias() += *r.jaw->columns * force;
       continue;
     }
     if (r.jaw) {

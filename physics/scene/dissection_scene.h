@@ -140,6 +140,11 @@ class DissectionScene {
   GraspStateMachine grasp_;
   GraspJaw grasp_jaw_;             // the footprint a grasp holds and its subgrid compliance
   JawPressSubgrid press_subgrid_;  // the closed jaws' press on the gallbladder, per surface vertex
+  // The grasp's load columns C J^T, for the grasp taken at grasp_jaw_take_step_ and the
+  // compliance's factorisation it was solved with.
+  Eigen::Matrix<double, Eigen::Dynamic, 3> grasp_jaw_columns_;
+  long grasp_jaw_take_step_ = -1, grasp_jaw_columns_take_ = -1;
+  int grasp_jaw_columns_factorization_ = -1;
   SurfaceRayCaster caster_;
   int liver_surface_id_ = -1, gallbladder_surface_id_ = -1;
   TetrahedralMesh gallbladder_current_;  // rest topology, current vertices

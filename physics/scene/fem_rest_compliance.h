@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "physics/fem/cholmod_solver.h"
@@ -43,6 +44,12 @@ class FemRestCompliance {
   /// The 3n x 3 block of C for a unit force at `node` (m/N): displacement increments of every
   /// dof. Factorises on first use after a change. Throws FemError if S0 is not positive definite.
   const Eigen::Matrix<double, Eigen::Dynamic, 3>& NodeColumns(int node);
+
+  /// The 3n x 3 block of C for unit forces spread over `points` (node, weight): C J^T for the
+  /// rows J of a load on those nodes, in one solve with three right-hand sides (instead of one per
+  /// node). Not cached: the caller keeps it while factorizations() stays. Throws FemError as
+  /// NodeColumns, and for a node out of range.
+  Eigen::Matrix<double, Eigen::Dynamic, 3> LoadColumns(const std::vector<std::pair<int, double>>& points);
 
   int factorizations() const { return factorizations_; }
 

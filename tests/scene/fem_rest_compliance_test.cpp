@@ -9,6 +9,7 @@
 #include <future>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physics/fem/fem_body.h"
@@ -81,6 +82,26 @@ TEST_F(FemRestComplianceTest, ColumnsAreTheLinearBodysStepCompliance) {
   // The springs make it stiffer: the same column without them is larger.
   const Eigen::MatrixXd free_columns = BodyColumns(0 * k_, 0 * c_, node_);
   EXPECT_GT(free_columns.norm(), 1.01 * expected.norm());
+}
+
+// A load spread over nodes (a jaw's footprint) in one solve: by linearity the weighted sum of the
+// nodes' own columns; a fixed node's share moves nothing; a node out of range is refused by name.
+TEST_F(FemRestComplianceTest, LoadColumnsAreTheWeightedSumOfTheNodesColumns) {
+  FemRestCompliance compliance(model_);
+  compliance.SetAttachments(k_, c_);
+  const int fixed = fixed_.front().node;
+  const std::vector<std::pair<int, double>> load{{node_, 0.5}, {node_ - 1, 0.3}, {node_ - 8, 0.2}, {fixed, 0.4}};
+  const Eigen::MatrixXd x = compliance.LoadColumns(load);
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(model_->num_dofs(), 3);
+  for (const auto& [node, w] : load) sum += w * compliance.NodeColumns(node);
+  EXPECT_LT((x - sum).norm(), 1e-10 * sum.norm());
+  EXPECT_EQ(x.middleRows(3 * fixed, 3).norm(), 0.0);
+  try {
+    compliance.LoadColumns({{model_->num_nodes(), 1.0}});
+    FAIL();
+  } catch (const FemError& e) {
+    EXPECT_NE(std::string(e.what()).find("test gallbladder"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(FemRestComplianceTest, BackgroundRefactorAnswersFromTheOldFactorUntilAdopted) {
